@@ -1,0 +1,3 @@
+// Depth prepass: only the depth buffer is written.
+precision lowp float;
+void main() {}

@@ -1,0 +1,48 @@
+// Constants and uniform-block layouts shared by the GLSL shaders and the C++ renderer: C++
+// includes this file inside a namespace that maps vec4/ivec4/mat4 to GLM types. Blocks use only
+// vec4, ivec4 and mat4 members so std140 and the C++ layout agree with no padding rules involved.
+#ifndef SHARED_LAYOUT_GLSL
+#define SHARED_LAYOUT_GLSL
+
+#define SSAO_MAX_SAMPLES 64
+#define SSAO_MAX_RADII 5
+#define SSAO_ROTATION_TILE 4
+#define SSAO_GROUP_SIZE 8
+#define BLUR_MAX_RADIUS 8
+#define BLUR_GROUP_SIZE 64
+
+// Uniform block bindings.
+#define BINDING_SSAO_PARAMS 0
+#define BINDING_BLUR_PARAMS 1
+#define BINDING_COMPOSITE_PARAMS 2
+
+// Debug views of the composite pass.
+#define VIEW_COLOR 0
+#define VIEW_AO 1
+#define VIEW_NORMAL 2
+#define VIEW_DEPTH 3
+
+struct SsaoParams {
+  mat4 projection;         // view space -> clip space
+  vec4 unproject;          // (1/P00, 1/P11, P20, P21): rebuilds view position from linear depth
+  vec4 radii_0_3;          // world-space radius of each resolution, largest first
+  vec4 radius_4_bias;      // x: fifth radius; y: depth bias as a fraction of the radius
+  ivec4 counts;            // x: samples per radius, y: radii, z: width, w: height
+  vec4 kernel[SSAO_MAX_SAMPLES];                             // xyz: unit-ball offset, w: unused
+  vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn
+};
+
+struct BlurParams {
+  vec4 weights[BLUR_MAX_RADIUS + 1];  // x: Gaussian weight at distance i
+  ivec4 config;                       // x: radius, y: direction (0 horizontal, 1 vertical), z: width, w: height
+  vec4 bilateral;                     // x: depth tolerance relative to the centre depth
+};
+
+struct CompositeParams {
+  vec4 light_direction;   // view space, normalised; w: ambient share
+  vec4 background;        // linear RGB of empty pixels
+  vec4 depth_range;       // x: near, y: far (for the depth view)
+  ivec4 config;           // x: view (VIEW_*), y: apply AO (0/1), z: width, w: height
+};
+
+#endif

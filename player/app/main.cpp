@@ -1,0 +1,97 @@
+// The player's command line: a thin layer over the app library.
+#include "app/render_command.h"
+#include "platform/platform.h"
+#include "scene/procedural.h"
+#include "ssao/params.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <map>
+
+namespace {
+
+template <typename Enum>
+std::map<std::string, Enum> choices(std::initializer_list<std::pair<const char*, Enum>> list) {
+  std::map<std::string, Enum> map;
+  for (const auto& [text, value] : list) map.emplace(text, value);
+  return map;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App cli{"player: a kiosk glTF player with screen-space ambient occlusion on OpenGL ES 3.1 compute"};
+  cli.require_subcommand(1);
+
+  app::RenderOptions render;
+  std::string size = "1024x768";
+  std::string ao = "on", prepass = "on";
+  auto* render_cmd = cli.add_subcommand("render", "Render one frame of SCENE to a PNG and print per-pass GPU times");
+  std::string builtins;
+  for (const std::string& name : scene::builtin_names()) builtins += " builtin:" + name;
+  render_cmd->add_option("scene", render.scene, "A .gltf or .glb file, or a built-in scene:" + builtins)->required();
+  render_cmd->add_option("-o,--output", render.output, "PNG file to write")->required();
+  render_cmd->add_option("--size", size, "Image size WxH")->capture_default_str();
+  render_cmd->add_option("--azimuth", render.framing.azimuth_deg, "Camera azimuth about +Y in degrees")->capture_default_str();
+  render_cmd->add_option("--elevation", render.framing.elevation_deg, "Camera elevation in degrees")
+      ->check(CLI::Range(-90.0, 90.0))->capture_default_str();
+  render_cmd->add_option("--distance", render.framing.distance, "Camera distance as a multiple of the distance that just fits the scene")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  render_cmd->add_option("--ao", ao, "Ambient occlusion on or off")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--samples", render.frame.ao_settings.samples, "AO samples per radius")
+      ->check(CLI::Range(1, SSAO_MAX_SAMPLES))->capture_default_str();
+  render_cmd->add_option("--radii", render.frame.ao_settings.radii, "AO radii (multi-resolution, merged by max)")
+      ->check(CLI::Range(1, SSAO_MAX_RADII))->capture_default_str();
+  render_cmd->add_option("--radius", render.frame.radius, "Largest AO radius in scene units (default: a tenth of the scene's bounding radius)")
+      ->check(CLI::NonNegativeNumber);
+  render_cmd->add_option("--pattern", render.frame.ao_settings.pattern, "Sample pattern")
+      ->transform(CLI::CheckedTransformer(choices<ssao::Pattern>({{"random", ssao::Pattern::random},
+                                                                  {"jittered", ssao::Pattern::jittered},
+                                                                  {"latin", ssao::Pattern::latin},
+                                                                  {"poisson", ssao::Pattern::poisson}})))
+      ->default_str("poisson");
+  render_cmd->add_option("--blur", render.frame.blur.mode, "AO blur")
+      ->transform(CLI::CheckedTransformer(choices<ssao::Blur>({{"gaussian", ssao::Blur::gaussian},
+                                                               {"bilateral", ssao::Blur::bilateral},
+                                                               {"off", ssao::Blur::off}})))
+      ->default_str("gaussian");
+  render_cmd->add_option("--view", render.frame.view, "What to show")
+      ->transform(CLI::CheckedTransformer(choices<render::View>({{"color", render::View::color},
+                                                                 {"ao", render::View::ao},
+                                                                 {"normal", render::View::normal},
+                                                                 {"depth", render::View::depth}})))
+      ->default_str("color");
+  render_cmd->add_option("--prepass", prepass, "Depth prepass before the G-buffer")
+      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--platform", render.platform, "GL platform: egl (headless EGL), osmesa, or auto (egl, then osmesa)")
+      ->check(CLI::IsMember(platform::names()))->capture_default_str();
+  render_cmd->add_option("--frames", render.frames, "Frames to render; times are the median of all but the first")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  render_cmd->add_option("--dump", render.dump_dir,
+                         "Write float EXRs (raw and blurred AO, world position, normal, linear depth) and camera.json to DIR");
+
+  std::string info_platform = "auto";
+  auto* info_cmd = cli.add_subcommand("info", "Print the platform, GL renderer, version and the extensions used");
+  info_cmd->add_option("--platform", info_platform, "GL platform: egl, osmesa or auto")
+      ->check(CLI::IsMember(platform::names()))->capture_default_str();
+
+  CLI11_PARSE(cli, argc, argv);
+
+  if (render_cmd->parsed()) {
+    int width = 0, height = 0;
+    char separator = 0;
+    std::istringstream size_text(size);
+    if (!(size_text >> width >> separator >> height) || separator != 'x' || width < 1 || height < 1 || !size_text.eof()) {
+      std::cerr << "error: --size: '" << size << "' is not WxH with positive integers (e.g. 1024x768)\n";
+      return 2;
+    }
+    render.frame.width = width;
+    render.frame.height = height;
+    render.frame.ao = ao == "on";
+    render.frame.depth_prepass = prepass == "on";
+    return app::run_render(render, std::cout, std::cerr);
+  }
+  if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);
+  return 2;
+}

@@ -1,0 +1,65 @@
+#pragma once
+// The validated CPU scene: what the renderer uploads. Everything here has been checked (finite
+// numbers, indices in range, unit-length or derived normals), so GPU code needs no checks of its own.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace scene {
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // a triangle list
+  int material = 0;
+  glm::vec3 min{0.0f}, max{0.0f};  // bounds of the positions
+};
+
+enum class Filter { nearest, linear };
+
+struct Texture {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;  // 8-bit sRGB-encoded RGBA, row 0 at the top
+  Filter mag = Filter::linear;
+  bool mipmaps = true;
+  bool repeat_s = true, repeat_t = true;
+};
+
+struct Material {
+  glm::vec4 base_color{1.0f};
+  int base_color_texture = -1;  // index into Scene::textures
+  bool double_sided = false;
+};
+
+struct Instance {
+  int mesh = 0;
+  glm::dmat4 world{1.0};  // double: scenes may sit far from the origin
+};
+
+struct Bounds {
+  glm::dvec3 min{0.0}, max{0.0};
+  glm::dvec3 centre() const { return (min + max) * 0.5; }
+  double radius() const { return glm::length(max - min) * 0.5; }
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;  // never empty: index 0 is the default material
+  std::vector<Texture> textures;
+  std::vector<Instance> instances;
+  Bounds bounds;
+  size_t triangle_count() const;
+};
+
+// Recomputes `bounds` from the instances (the transformed corners of each mesh's box).
+void update_bounds(Scene& scene);
+
+}  // namespace scene

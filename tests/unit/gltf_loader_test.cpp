@@ -1,0 +1,317 @@
+// The glTF loader on the shared scenes and on hand-made files, good and bad. Every bad file must
+// give one error naming the file and what is wrong, and leave the output untouched.
+#include "scene/gltf_loader.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kShared = PLAYER_SHARED_DIR;
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t chunk = static_cast<uint32_t>(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) chunk |= static_cast<uint32_t>(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) chunk |= bytes[i + 2];
+    out += table[(chunk >> 18) & 63];
+    out += table[(chunk >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(chunk >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[chunk & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append(std::vector<unsigned char>& bytes, std::initializer_list<T> values) {
+  for (T value : values) {
+    unsigned char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    bytes.insert(bytes.end(), raw, raw + sizeof(T));
+  }
+}
+
+class GltfLoader : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("gltf_loader_test_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_ / "scene");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // One triangle (or the given positions and indices) in a single buffer, as a data URI.
+  json triangle(std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, std::vector<uint16_t> indices = {0, 1, 2}) {
+    std::vector<unsigned char> bytes;
+    for (float p : positions) append<float>(bytes, {p});
+    const size_t index_offset = bytes.size();
+    for (uint16_t i : indices) append<uint16_t>(bytes, {i});
+    while (bytes.size() % 4) bytes.push_back(0);
+    return json{
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+        {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", index_offset}},
+          {{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", indices.size() * 2}}}},
+        {"accessors",
+         {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"}},
+          {{"bufferView", 1}, {"componentType", 5123}, {"count", indices.size()}, {"type", "SCALAR"}}}}};
+  }
+
+  fs::path write(const json& doc, const std::string& name = "scene/model.gltf") {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << doc.dump();
+    return path;
+  }
+
+  // Loads and expects failure; returns the error after checking it names the file.
+  std::string error_of(const fs::path& path) {
+    scene::Scene out;
+    out.name = "untouched";
+    scene::LoadReport report;
+    EXPECT_FALSE(scene::load_gltf(path, out, report));
+    EXPECT_EQ(out.name, "untouched");
+    EXPECT_NE(report.error.find(path.string()), std::string::npos) << report.error;
+    return report.error;
+  }
+
+  scene::Scene load_ok(const fs::path& path) {
+    scene::Scene out;
+    scene::LoadReport report;
+    EXPECT_TRUE(scene::load_gltf(path, out, report)) << report.error;
+    return out;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(GltfLoader, SharedScenesLoadWithTheirTriangleCounts) {
+  const std::pair<const char*, size_t> scenes[] = {{"stanford-bunny.glb", 69451}, {"armadillo.glb", 50000},
+                                                   {"spot.glb", 5856},           {"fandisk.glb", 12946},
+                                                   {"teapot-no-normals.glb", 6320}};
+  for (const auto& [file, triangles] : scenes) {
+    ASSERT_TRUE(fs::exists(kShared / "scenes" / file)) << "the shared scenes must be beside the repository: " << kShared;
+    const scene::Scene loaded = load_ok(kShared / "scenes" / file);
+    EXPECT_EQ(loaded.triangle_count(), triangles) << file;
+    EXPECT_GT(loaded.bounds.radius(), 0.0) << file;
+    for (const scene::Mesh& mesh : loaded.meshes)
+      for (const scene::Vertex& v : mesh.vertices) ASSERT_NEAR(glm::length(v.normal), 1.0f, 1e-4f) << file;
+  }
+}
+
+TEST_F(GltfLoader, MissingNormalsBecomeFlatNormals) {
+  const scene::Scene teapot = load_ok(kShared / "scenes" / "teapot-no-normals.glb");
+  size_t checked = 0;
+  for (const scene::Mesh& mesh : teapot.meshes)
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const scene::Vertex& a = mesh.vertices[mesh.indices[t]];
+      const scene::Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+      const scene::Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+      const glm::dvec3 face = glm::cross(glm::dvec3(b.position - a.position), glm::dvec3(c.position - a.position));
+      if (glm::length(face) < 1e-12) continue;  // degenerate triangles keep a zero normal
+      const glm::dvec3 expected = glm::normalize(face);
+      for (const scene::Vertex* v : {&a, &b, &c}) EXPECT_NEAR(glm::dot(glm::dvec3(v->normal), expected), 1.0, 1e-5);
+      ++checked;
+    }
+  EXPECT_GT(checked, 6000u);
+}
+
+TEST_F(GltfLoader, LoadsATriangleWithNodeTransforms) {
+  json doc = triangle();
+  doc["nodes"] = {{{"children", {1}}, {"translation", {10, 0, 0}}}, {{"mesh", 0}, {"scale", {2, 2, 2}}}};
+  const scene::Scene loaded = load_ok(write(doc));
+  ASSERT_EQ(loaded.instances.size(), 1u);
+  EXPECT_NEAR(loaded.bounds.min.x, 10.0, 1e-12);
+  EXPECT_NEAR(loaded.bounds.max.x, 12.0, 1e-12);
+  EXPECT_NEAR(loaded.bounds.max.y, 2.0, 1e-12);
+}
+
+TEST_F(GltfLoader, StripsAndFansBecomeCounterClockwiseTriangleLists) {
+  // A unit square as a strip (0,1,2,3 zig-zag) and as a fan; every triangle must face +Z.
+  for (int mode : {5, 6}) {
+    json doc = mode == 5 ? triangle({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, {0, 1, 2, 3})
+                         : triangle({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 3});
+    doc["meshes"][0]["primitives"][0]["mode"] = mode;
+    const scene::Scene loaded = load_ok(write(doc));
+    const scene::Mesh& mesh = loaded.meshes.at(0);
+    ASSERT_EQ(mesh.indices.size(), 6u) << "mode " << mode;
+    for (size_t t = 0; t < 6; t += 3) {
+      const glm::vec3 a = mesh.vertices[mesh.indices[t]].position, b = mesh.vertices[mesh.indices[t + 1]].position,
+                      c = mesh.vertices[mesh.indices[t + 2]].position;
+      EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << "mode " << mode << " triangle " << t / 3;
+    }
+  }
+}
+
+TEST_F(GltfLoader, AcceptsByteAndIntIndicesAndNonIndexedPrimitives) {
+  // Without NORMAL the triangles are unshared (flat normals), so the order of the output vertices
+  // tells which indices were read.
+  auto corner_order = [&](const json& doc) {
+    const scene::Scene loaded = load_ok(write(doc));
+    std::vector<glm::vec3> order;
+    for (uint32_t index : loaded.meshes.at(0).indices) order.push_back(loaded.meshes[0].vertices[index].position);
+    return order;
+  };
+  const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  json doc = triangle();
+  std::vector<unsigned char> bytes;
+  append<float>(bytes, {0, 0, 0, 1, 0, 0, 0, 1, 0});
+  append<uint32_t>(bytes, {1, 2, 0});
+  append<uint8_t>(bytes, {2, 0, 1, 0});
+  doc["buffers"][0] = {{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}};
+  doc["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+                        {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 12}},
+                        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 3}}};
+  doc["accessors"][1] = {{"bufferView", 1}, {"componentType", 5125}, {"count", 3}, {"type", "SCALAR"}};
+  doc["accessors"].push_back({{"bufferView", 2}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}});
+  EXPECT_EQ(corner_order(doc), (std::vector<glm::vec3>{b, c, a}));
+  doc["meshes"][0]["primitives"][0]["indices"] = 2;
+  EXPECT_EQ(corner_order(doc), (std::vector<glm::vec3>{c, a, b}));
+  doc["meshes"][0]["primitives"][0].erase("indices");
+  EXPECT_EQ(corner_order(doc), (std::vector<glm::vec3>{a, b, c}));
+}
+
+TEST_F(GltfLoader, LoadsABaseColorTextureThroughOpenImageIO) {
+  const fs::path png = dir_ / "scene" / "albedo.png";
+  const unsigned char pixels[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+  auto output = OIIO::ImageOutput::create(png.string());
+  ASSERT_TRUE(output);
+  ASSERT_TRUE(output->open(png.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, pixels));
+  output->close();
+  json doc = triangle();
+  doc["images"] = {{{"uri", "albedo.png"}}};
+  doc["textures"] = {{{"source", 0}}};
+  doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {1, 0.5, 1, 1}}}}}};
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const scene::Scene loaded = load_ok(write(doc));
+  ASSERT_EQ(loaded.textures.size(), 1u);
+  EXPECT_EQ(loaded.textures[0].width, 2);
+  EXPECT_EQ(loaded.textures[0].rgba, (std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255}));
+  const scene::Material& material = loaded.materials.at(static_cast<size_t>(loaded.meshes[0].material));
+  EXPECT_EQ(material.base_color_texture, 0);
+  EXPECT_FLOAT_EQ(material.base_color.g, 0.5f);
+}
+
+TEST_F(GltfLoader, TruncatedBinaryFileIsAClearError) {
+  std::ifstream in(kShared / "scenes" / "spot.glb", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1000u);
+  const fs::path path = dir_ / "scene" / "truncated.glb";
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_NE(error_of(path).find("not a valid glTF"), std::string::npos);
+}
+
+TEST_F(GltfLoader, NotJsonAtAllIsAClearError) {
+  const fs::path path = dir_ / "scene" / "garbage.gltf";
+  std::ofstream(path) << "{ this is not json";
+  EXPECT_NE(error_of(path).find("not a valid glTF"), std::string::npos);
+}
+
+TEST_F(GltfLoader, NonFinitePositionsAreRejected) {
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    const std::string error = error_of(write(triangle({0, 0, 0, 1, bad, 0, 0, 1, 0})));
+    EXPECT_NE(error.find("attributes.POSITION"), std::string::npos) << error;
+    EXPECT_NE(error.find("expected a finite number"), std::string::npos) << error;
+  }
+}
+
+TEST_F(GltfLoader, OutOfRangeIndicesAreRejected) {
+  const std::string error = error_of(write(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 7})));
+  EXPECT_NE(error.find("indices: element 2 is 7, expected less than the vertex count 3"), std::string::npos) << error;
+}
+
+TEST_F(GltfLoader, AccessorsBeyondTheirBufferViewAreRejected) {
+  json doc = triangle();
+  doc["accessors"][0]["count"] = 100;
+  const std::string error = error_of(write(doc));
+  EXPECT_NE(error.find("needs 1200 bytes but its buffer view has 36"), std::string::npos) << error;
+  doc = triangle();
+  doc["bufferViews"][0]["byteLength"] = 100000;
+  EXPECT_NE(error_of(write(doc)).find("spans bytes"), std::string::npos);
+  doc = triangle();
+  doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
+  EXPECT_NE(error_of(write(doc)).find("accessor index 9 out of range"), std::string::npos);
+}
+
+TEST_F(GltfLoader, MissingBufferFileIsAClearError) {
+  json doc = triangle();
+  doc["buffers"][0]["uri"] = "missing.bin";
+  const std::string error = error_of(write(doc));
+  EXPECT_NE(error.find("missing.bin"), std::string::npos) << error;
+}
+
+TEST_F(GltfLoader, UrisMayNotEscapeTheScenesFolder) {
+  std::ofstream(dir_ / "secret.bin") << std::string(48, 'x');
+  json doc = triangle();
+  doc["buffers"][0]["uri"] = "../secret.bin";
+  std::string error = error_of(write(doc));
+  EXPECT_NE(error.find("buffers[0].uri: '../secret.bin' escapes the scene's folder"), std::string::npos) << error;
+  doc["buffers"][0]["uri"] = "sub/../../secret.bin";
+  EXPECT_NE(error_of(write(doc)).find("escapes the scene's folder"), std::string::npos);
+  doc["buffers"][0]["uri"] = (dir_ / "secret.bin").string();
+  EXPECT_NE(error_of(write(doc)).find("is an absolute path"), std::string::npos);
+  doc["buffers"][0]["uri"] = "file:///etc/passwd";
+  EXPECT_NE(error_of(write(doc)).find("is a URL"), std::string::npos);
+  // A symbolic link inside the folder that points outside is caught when the file is opened.
+  fs::create_symlink(dir_ / "secret.bin", dir_ / "scene" / "link.bin");
+  doc["buffers"][0]["uri"] = "link.bin";
+  const std::string link_error = error_of(write(doc));
+  EXPECT_NE(link_error.find("outside the scene's folder"), std::string::npos) << link_error;
+}
+
+TEST_F(GltfLoader, EmptyScenesAreRejected) {
+  json doc = triangle();
+  doc["scenes"] = json::array({json{{"nodes", json::array()}}});
+  EXPECT_NE(error_of(write(doc)).find("no scene with nodes"), std::string::npos);
+  doc = triangle();
+  doc["nodes"] = {json::object()};
+  EXPECT_NE(error_of(write(doc)).find("no triangles"), std::string::npos);
+  doc = triangle();
+  doc["meshes"][0]["primitives"][0]["mode"] = 0;  // points only
+  EXPECT_NE(error_of(write(doc)).find("no triangles"), std::string::npos);
+}
+
+TEST_F(GltfLoader, NodeCyclesAndSharedChildrenAreRejected) {
+  json doc = triangle();
+  doc["nodes"] = {{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}};
+  EXPECT_NE(error_of(write(doc)).find("cycle"), std::string::npos);
+  doc["nodes"] = {{{"children", {2}}}, {{"children", {2}}}, {{"mesh", 0}}};
+  doc["scenes"][0]["nodes"] = {0, 1};
+  EXPECT_NE(error_of(write(doc)).find("more than one parent"), std::string::npos);
+}
+
+TEST_F(GltfLoader, UnsupportedRequiredExtensionsAreRejected) {
+  json doc = triangle();
+  doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  EXPECT_NE(error_of(write(doc)).find("extensionsRequired: 'KHR_draco_mesh_compression' is not supported"), std::string::npos);
+}
+
+TEST_F(GltfLoader, OverflowingTransformsAndWrongFileTypesAreRejected) {
+  // Finite in JSON, but the world bounds overflow to infinity once the scale is applied.
+  json doc = triangle();
+  doc["nodes"][0]["scale"] = {1e308, 1e308, 1e308};
+  doc["nodes"] = {{{"children", {1}}, {"scale", {1e308, 1e308, 1e308}}}, {{"mesh", 0}, {"scale", {1e308, 1, 1}}}};
+  EXPECT_NE(error_of(write(doc)).find("bounds are not finite"), std::string::npos);
+  std::ofstream(dir_ / "scene" / "model.obj") << "v 0 0 0\n";
+  EXPECT_NE(error_of(dir_ / "scene" / "model.obj").find("expected a .gltf or .glb file"), std::string::npos);
+  EXPECT_NE(error_of(dir_ / "scene" / "absent.glb").find("no such file"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,49 @@
+#pragma once
+// A context, a renderer and a framed scene, for GL tests on either platform.
+#include "app/render_command.h"
+#include "gl/caps.h"
+#include "platform/platform.h"
+#include "render/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <sstream>
+
+namespace test {
+
+struct Harness {
+  std::unique_ptr<platform::Platform> platform;
+  gl::Caps caps;
+  render::Renderer renderer;
+  scene::Scene scene;
+  scene::Camera camera;
+
+  // Creates the context, loads `scene_spec` and renders one frame with `settings` from `framing`.
+  ::testing::AssertionResult start(const std::string& platform_name, const std::string& scene_spec,
+                                   const render::FrameSettings& settings, const scene::Framing& framing = {}) {
+    std::string error;
+    platform = platform::create({platform_name, true}, error);
+    if (!platform) return ::testing::AssertionFailure() << error;
+    caps = gl::query_caps();
+    std::ostringstream log;
+    if (!app::load_scene(scene_spec, scene, error, log)) return ::testing::AssertionFailure() << error;
+    if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
+      return ::testing::AssertionFailure() << error;
+    camera = scene::frame(scene.bounds, framing, settings.width, settings.height);
+    renderer.render(camera);
+    return ::testing::AssertionSuccess();
+  }
+
+  // The pixel (GL order, row 0 at the bottom) where a world point lands.
+  glm::ivec2 pixel_of(const glm::dvec3& world) const {
+    const glm::dvec4 clip = camera.projection() * camera.view() * glm::dvec4(world, 1.0);
+    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+    const auto& s = renderer.settings();
+    return glm::ivec2(static_cast<int>((ndc.x * 0.5 + 0.5) * s.width), static_cast<int>((ndc.y * 0.5 + 0.5) * s.height));
+  }
+};
+
+inline std::string platform_name(const ::testing::TestParamInfo<std::string>& info) { return info.param; }
+
+}  // namespace test

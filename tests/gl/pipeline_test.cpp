@@ -1,0 +1,189 @@
+// The GPU pipeline against the CPU reference and against values known in closed form, on both
+// headless platforms.
+#include "harness.h"
+#include "ssao/reference.h"
+
+#include <algorithm>
+
+namespace {
+
+using test::Harness;
+
+constexpr int kSide = 64;
+
+render::FrameSettings small_settings() {
+  render::FrameSettings settings;
+  settings.width = settings.height = kSide;
+  settings.check_errors = true;
+  return settings;
+}
+
+class Pipeline : public ::testing::TestWithParam<std::string> {};
+
+struct Comparison {
+  float max_difference = 0.0f;
+  size_t off_by_more = 0;  // pixels differing by more than `tolerance`
+};
+
+Comparison compare(const std::vector<glm::vec2>& gpu, const std::vector<glm::vec2>& cpu, float tolerance) {
+  Comparison result;
+  for (size_t i = 0; i < gpu.size(); ++i) {
+    const float difference = std::abs(gpu[i].x - cpu[i].x);
+    result.max_difference = std::max(result.max_difference, difference);
+    if (difference > tolerance) ++result.off_by_more;
+  }
+  return result;
+}
+
+TEST_P(Pipeline, GpuSsaoAndBlurEqualTheCpuReference) {
+  for (const char* scene : {"builtin:demo", "builtin:spheres"}) {
+    for (ssao::Pattern pattern : ssao::kPatterns) {
+      for (ssao::Blur blur : {ssao::Blur::gaussian, ssao::Blur::bilateral}) {
+        render::FrameSettings settings = small_settings();
+        settings.ao_settings.pattern = pattern;
+        settings.blur.mode = blur;
+        Harness h;
+        ASSERT_TRUE(h.start(GetParam(), scene, settings));
+        const std::string what = std::string(scene) + " " + std::string(ssao::name(pattern)) + " " + std::string(ssao::name(blur));
+        const auto depth = h.renderer.read_linear_depth();
+        const auto cpu_raw = ssao::reference_ssao(depth, h.renderer.ssao_params(), h.renderer.inverse_far());
+        const auto gpu_raw = h.renderer.read_ao_raw();
+        // The GPU and the CPU evaluate the same float expressions in possibly different order, so a
+        // sample lying within rounding of a depth or texel boundary may flip: that moves one pixel's
+        // AO by 1/samples. Allow it at up to 1% of pixels; everything else agrees to half-float precision.
+        const Comparison raw = compare(gpu_raw, cpu_raw, 1e-3f);
+        EXPECT_LE(raw.max_difference, 1.0f / static_cast<float>(settings.ao_settings.samples) + 1e-3f) << what;
+        EXPECT_LE(raw.off_by_more, gpu_raw.size() / 100) << what;
+        // The blur, fed the GPU's own raw AO, must match to within half-float rounding of the sums.
+        const auto cpu_h = ssao::reference_blur(gpu_raw, h.renderer.blur_params(0), blur == ssao::Blur::bilateral);
+        const auto cpu_v = ssao::reference_blur(cpu_h, h.renderer.blur_params(1), blur == ssao::Blur::bilateral);
+        const Comparison blurred = compare(h.renderer.read_ao_blurred(), cpu_v, 2e-3f);
+        EXPECT_EQ(blurred.off_by_more, 0u) << what << ", max difference " << blurred.max_difference;
+        EXPECT_EQ(h.renderer.gl_error(), "") << what;
+      }
+    }
+  }
+}
+
+TEST_P(Pipeline, BackgroundPixelsGetNoOcclusion) {
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), "builtin:spheres", small_settings()));
+  const auto depth = h.renderer.read_linear_depth();
+  const auto raw = h.renderer.read_ao_raw(), blurred = h.renderer.read_ao_blurred();
+  size_t background = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] > 0.0f) continue;
+    ++background;
+    EXPECT_EQ(raw[i].x, 0.0f);
+    EXPECT_EQ(blurred[i].x, 0.0f);
+  }
+  EXPECT_GT(background, depth.size() / 10);  // the framing leaves a border of background
+}
+
+TEST_P(Pipeline, PlaneFacingTheCameraGetsTheEstimatorsPlaneValue) {
+  for (int samples : {8, 16, 32}) {
+    render::FrameSettings settings = small_settings();
+    settings.ao_settings.samples = samples;
+    settings.blur.mode = ssao::Blur::off;
+    scene::Framing head_on;
+    head_on.azimuth_deg = 0.0;
+    head_on.elevation_deg = 0.0;
+    head_on.distance = 0.5;  // the plane fills the picture
+    Harness h;
+    ASSERT_TRUE(h.start(GetParam(), "builtin:plane", settings, head_on));
+    const auto& params = h.renderer.ssao_params();
+    // On a plane facing the camera a sample is hidden exactly when it lies more than the bias behind
+    // the plane; the turn about the view axis leaves that depth unchanged, so every radius agrees.
+    int behind = 0;
+    for (int i = 0; i < samples; ++i) behind += params.kernel[i].z < -params.radius_4_bias.y ? 1 : 0;
+    const float expected = static_cast<float>(behind) / static_cast<float>(samples);
+    const auto raw = h.renderer.read_ao_raw();
+    const auto depth = h.renderer.read_linear_depth();
+    // Away from the border, where no sample leaves the picture.
+    for (int y = 12; y < kSide - 12; ++y)
+      for (int x = 12; x < kSide - 12; ++x) {
+        const size_t i = static_cast<size_t>(y * kSide + x);
+        ASSERT_GT(depth[i], 0.0f);
+        EXPECT_NEAR(raw[i].x, expected, 1e-3f) << "pixel " << x << "," << y << ", " << samples << " samples";
+      }
+  }
+}
+
+TEST_P(Pipeline, InsideCornerIsDarkerThanAnOpenFace) {
+  render::FrameSettings settings = small_settings();
+  settings.width = settings.height = 128;
+  settings.radius = 0.5f;  // a radius a quarter of the walls' size makes the corner's shadow many pixels wide
+  settings.blur.mode = ssao::Blur::off;
+  scene::Framing view;
+  view.azimuth_deg = 45.0;
+  view.elevation_deg = 35.0;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, view));
+  const auto ao = h.renderer.read_ao_raw();
+  auto ao_near = [&](glm::dvec3 world) {  // mean over 5x5 pixels: the per-pixel turns make single pixels noisy
+    const glm::ivec2 p = h.pixel_of(world);
+    float sum = 0.0f;
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) sum += ao[static_cast<size_t>((p.y + dy) * 128 + p.x + dx)].x;
+    return sum / 25.0f;
+  };
+  // On the floor a fifth of the radius from both walls, about three quarters of the sampling sphere
+  // lies below the floor or behind a wall; on an open face, one half.
+  const float corner = ao_near({0.1, 0.0, 0.1});
+  const float floor_open = ao_near({1.5, 0.0, 1.5});
+  const float wall_open = ao_near({1.5, 1.5, 0.0});
+  EXPECT_GT(corner, floor_open + 0.15f) << "corner " << corner << ", open floor " << floor_open;
+  EXPECT_GT(corner, wall_open + 0.15f) << "corner " << corner << ", open wall " << wall_open;
+}
+
+TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
+  for (bool prepass : {true, false})
+    for (bool ao : {true, false})
+      for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral})
+        for (render::View view : {render::View::color, render::View::ao, render::View::normal, render::View::depth}) {
+          render::FrameSettings settings = small_settings();
+          settings.width = 48;
+          settings.height = 32;
+          settings.depth_prepass = prepass;
+          settings.ao = ao;
+          settings.blur.mode = blur;
+          settings.view = view;
+          Harness h;
+          ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+          EXPECT_EQ(h.renderer.gl_error(), "") << "prepass " << prepass << " ao " << ao << " blur " << ssao::name(blur)
+                                               << " view " << render::name(view);
+          const render::PassTimes times = h.renderer.collect_times();
+          EXPECT_EQ(times.ms[render::kDepthPrepass] >= 0.0, prepass);
+          EXPECT_EQ(times.ms[render::kSsao] >= 0.0, ao);
+          EXPECT_EQ(times.ms[render::kBlurH] >= 0.0, ao && blur != ssao::Blur::off);
+          EXPECT_GE(times.ms[render::kComposite], 0.0);
+        }
+}
+
+TEST_P(Pipeline, DepthPrepassDoesNotChangeThePicture) {
+  render::FrameSettings with = small_settings(), without = small_settings();
+  without.depth_prepass = false;
+  std::vector<uint8_t> picture;
+  {
+    Harness a;
+    ASSERT_TRUE(a.start(GetParam(), "builtin:demo", with));
+    picture = a.renderer.read_color();
+  }
+  Harness b;
+  ASSERT_TRUE(b.start(GetParam(), "builtin:demo", without));
+  EXPECT_EQ(picture, b.renderer.read_color());
+}
+
+TEST_P(Pipeline, TexturedSharedSceneRendersWithoutError) {
+  render::FrameSettings settings = small_settings();
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), std::string(PLAYER_SHARED_DIR) + "/scenes/teapot-no-normals.glb", settings));
+  EXPECT_EQ(h.renderer.gl_error(), "");
+  const auto depth = h.renderer.read_linear_depth();
+  EXPECT_GT(std::count_if(depth.begin(), depth.end(), [](float d) { return d > 0.0f; }), kSide * kSide / 8);
+  for (const glm::vec3& n : h.renderer.read_view_normals()) ASSERT_FALSE(std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z));
+}
+
+INSTANTIATE_TEST_SUITE_P(Platforms, Pipeline, ::testing::Values("egl", "osmesa"), test::platform_name);
+
+}  // namespace

@@ -166,7 +166,9 @@ RgbImage make_test_scene(int width, int height, int scene, double t) {
       } else {
         // A checker floor in perspective: the texture that makes shifts and scaling visible.
         const double depth = (height - horizon) / (y - horizon + 1.0);
-        const bool check = (static_cast<int>(std::floor((x - width / 2.0) * depth / 40.0)) +
+        // The floor scrolls with t as under a moving camera path.
+        const double pan = t * width * 0.1;
+        const bool check = (static_cast<int>(std::floor((x - width / 2.0 + pan) * depth / 40.0)) +
                             static_cast<int>(std::floor(depth * 4.0))) % 2 == 0;
         for (int i = 0; i < 3; ++i) c[i] = ground[i] * (check ? 1.0 : 0.6);
       }

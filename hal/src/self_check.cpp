@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include "homography.h"
@@ -21,7 +22,15 @@ const char* const kCornerNames[4] = {"top-left", "top-right", "bottom-right", "b
 using FamilyPtr = std::unique_ptr<apriltag_family_t, decltype(&tag36h11_destroy)>;
 using DetectorPtr = std::unique_ptr<apriltag_detector_t, decltype(&apriltag_detector_destroy)>;
 using DetectionsPtr = std::unique_ptr<zarray_t, decltype(&apriltag_detections_destroy)>;
-using TagImagePtr = std::unique_ptr<image_u8_t, decltype(&image_u8_destroy)>;
+// Debian's libapriltag does not export image_u8_destroy; this is what it does (common/image_u8.c):
+// the struct and its pixel buffer are separate malloc blocks.
+struct TagImageFree {
+  void operator()(image_u8_t* im) const {
+    std::free(im->buf);
+    std::free(im);
+  }
+};
+using TagImagePtr = std::unique_ptr<image_u8_t, TagImageFree>;
 
 float luma(const std::uint8_t* p) { return 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2]; }
 
@@ -49,7 +58,7 @@ std::array<int, 2> FiducialLayout::marker_origin(int corner) const {
 void draw_fiducials(RgbImage& frame, const FiducialLayout& layout) {
   FamilyPtr family(tag36h11_create(), &tag36h11_destroy);
   for (int corner = 0; corner < 4; ++corner) {
-    TagImagePtr tag(apriltag_to_image(family.get(), layout.first_id + corner), &image_u8_destroy);
+    TagImagePtr tag(apriltag_to_image(family.get(), layout.first_id + corner));
     const auto [ox, oy] = layout.marker_origin(corner);
     for (int y = 0; y < layout.marker_size(); ++y)
       for (int x = 0; x < layout.marker_size(); ++x) {
@@ -240,7 +249,7 @@ SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialL
   // 5. Mean SSIM over every fully unmasked window.
   const int win = m.options.ssim_window;
   const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
-  double total = 0;
+  double total = 0, weights = 0;
   int windows = 0;
   for (int wy = 0; wy + win <= gh; ++wy)
     for (int wx = 0; wx + win <= gw; ++wx) {
@@ -260,14 +269,20 @@ SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialL
       const double k = win * win;
       const double ua = sa / k, ub = sb / k;
       const double va = saa / k - ua * ua, vb = sbb / k - ub * ub, cov = sab / k - ua * ub;
-      total += ((2 * ua * ub + c1) * (2 * cov + c2)) / ((ua * ua + ub * ub + c1) * (va + vb + c2));
+      const double ssim = ((2 * ua * ub + c1) * (2 * cov + c2)) / ((ua * ua + ub * ub + c1) * (va + vb + c2));
+      // Flat windows (sky, walls) score near 1 whatever is shown, so plain mean SSIM lets a wrong
+      // scene with similar flat areas pass; weighting by local contrast counts the windows that can
+      // tell pictures apart. A capture that is flat where the reference is not still weighs in.
+      const double weight = std::sqrt(std::max(va, 0.0)) + std::sqrt(std::max(vb, 0.0)) + 1e-3;
+      total += weight * ssim;
+      weights += weight;
       ++windows;
     }
   if (windows == 0) {
     result.reason = "comparison grid has no unmasked window";
     return result;
   }
-  result.score = total / windows;
+  result.score = total / weights;
   result.passed = result.score >= m.options.pass_threshold;
   result.reason = result.passed ? "ok"
                                 : "picture differs from the presented frame (SSIM " + std::to_string(result.score) +

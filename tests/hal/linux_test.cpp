@@ -109,16 +109,19 @@ TEST(Hardware, GpioSimButtons) {
   fs::create_directories(dev / "bank0" / "line0");
   write(dev / "bank0" / "line0" / "name", "HAL_TEST_BTN");
   write(dev / "live", "1");
-  std::string chip;
-  {
-    FILE* f = std::fopen((dev / "bank0" / "chip_name").c_str(), "r");
-    ASSERT_NE(f, nullptr);
-    char buf[64] = {};
-    ASSERT_NE(std::fgets(buf, sizeof buf, f), nullptr);
-    std::fclose(f);
-    chip = buf;
-    chip.erase(chip.find_last_not_of("\n") + 1);
-  }
+  auto read_attr = [](const fs::path& p) {
+    std::string v;
+    if (FILE* f = std::fopen(p.c_str(), "r")) {
+      char buf[128] = {};
+      if (std::fgets(buf, sizeof buf, f)) v = buf;
+      std::fclose(f);
+    }
+    v.erase(v.find_last_not_of('\n') + 1);
+    return v;
+  };
+  const std::string chip = read_attr(dev / "bank0" / "chip_name");
+  const std::string platform_dev = read_attr(dev / "dev_name");
+  ASSERT_FALSE(chip.empty() || platform_dev.empty());
   MonotonicClock clock;
   std::vector<std::string> problems;
   std::vector<ButtonConfig> cfg(1);
@@ -126,17 +129,16 @@ TEST(Hardware, GpioSimButtons) {
   cfg[0].line.line_name = "HAL_TEST_BTN";
   cfg[0].timing.debounce = std::chrono::milliseconds(5);
   auto buttons = open_gpio_buttons(cfg, "hal-test", clock, problems);
-  EXPECT_TRUE(problems.empty()) << problems[0];
+  EXPECT_TRUE(problems.empty()) << (problems.empty() ? "" : problems[0]);
   // Drive the simulated line high through sysfs, wait past the debounce, expect a press.
-  const fs::path pull = fs::path("/sys/devices/platform") / ("gpio-sim.0") / chip / "sim_gpio0" / "pull";
-  if (fs::exists(pull)) {
-    write(pull, "pull-up");
-    usleep(20000);
-    std::array<ButtonEvent, 4> ev;
-    const std::size_t n = buttons->read(ev);
-    ASSERT_GE(n, 1u);
-    EXPECT_EQ(ev[0].action, ButtonAction::Press);
-  }
+  const fs::path pull = fs::path("/sys/devices/platform") / platform_dev / chip / "sim_gpio0" / "pull";
+  ASSERT_TRUE(fs::exists(pull)) << pull;
+  write(pull, "pull-up");
+  usleep(20000);
+  std::array<ButtonEvent, 4> ev;
+  const std::size_t n = buttons->read(ev);
+  ASSERT_GE(n, 1u);
+  EXPECT_EQ(ev[0].action, ButtonAction::Press);
   buttons.reset();
   write(dev / "live", "0");
   fs::remove(dev / "bank0" / "line0");

@@ -4,7 +4,7 @@
 // Registration: during a check the player presents its frame with four AprilTag (tag36h11) markers
 // flush in the screen corners (draw_fiducials). Their 16 detected corners give a homography from
 // display to camera; the capture is warped into display space and compared with the presented frame
-// by SSIM on downsampled, contrast-normalised luma, the tag squares masked out. Markers flush with
+// by contrast-weighted SSIM on downsampled, contrast-normalised luma, the tag squares masked out. Markers flush with
 // the corners make a shifted or cropped picture lose a marker, and the marker ids change with every
 // check so a frozen screen still showing an old check frame is recognised as such.
 #include <array>

@@ -1,0 +1,58 @@
+#pragma once
+// A board description: which GPIO lines are buttons and LEDs, which camera watches the display.
+// Read from TOML; see board/README.md for the format.
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hal/buttons.h"
+#include "hal/camera.h"
+
+namespace hal {
+
+enum class Bias : std::uint8_t { AsIs, Disable, PullUp, PullDown };
+
+// A GPIO line, by line name (stable across Pi 4 and Pi 5, e.g. "GPIO17") or by chip + offset.
+struct GpioLine {
+  std::string chip;  // name ("gpiochip0"), path, label or number, as gpiod_chip_open_lookup takes
+  int offset = -1;
+  std::string line_name;
+  bool active_low = false;
+  Bias bias = Bias::AsIs;
+  std::string describe() const;  // "line GPIO17" or "gpiochip0:17", for error messages
+};
+
+struct ButtonConfig {
+  std::string name;
+  GpioLine line;
+  ButtonTiming timing;
+};
+
+struct LedConfig {
+  std::string name;
+  GpioLine line;
+};
+
+struct BoardConfig {
+  std::string source;  // the file it came from, for messages
+  std::string name;
+  std::string consumer = "ssao-player";  // shown by gpioinfo as the line's user
+  std::vector<ButtonConfig> buttons;
+  std::vector<LedConfig> leds;
+  std::optional<CameraConfig> camera;
+  std::string status_file;
+  std::string mock_button_script;  // relative paths are resolved against the board file's folder
+  std::vector<std::string> mock_camera_images;
+};
+
+// Thrown only while loading, never once running: "<file>: <field>: expected <what>, got <what>".
+class ConfigError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+BoardConfig load_board(const std::string& path);
+BoardConfig parse_board(const std::string& toml_text, const std::string& source_name);
+
+}  // namespace hal

@@ -1,0 +1,47 @@
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "hal/image.h"
+
+namespace hal {
+
+enum class CameraState : std::uint8_t {
+  Closed,     // never opened or closed on purpose
+  Streaming,  // frames can be read
+  Lost,       // device vanished or failed; reopen is retried periodically
+};
+std::string_view to_string(CameraState s);
+
+enum class PixelFormat : std::uint8_t { Auto, Mjpeg, Yuyv, Rgb24 };
+std::string_view to_string(PixelFormat f);
+bool parse_pixel_format(std::string_view text, PixelFormat& out);
+
+struct CameraConfig {
+  std::string device;  // a path; /dev/v4l/by-id/... or by-path/... survive re-enumeration
+  int width = 1280;
+  int height = 720;
+  PixelFormat format = PixelFormat::Auto;  // Auto: MJPEG, then YUYV
+  int buffers = 4;
+  std::chrono::milliseconds reopen_interval{2000};
+};
+
+class Camera {
+public:
+  virtual ~Camera() = default;
+  // Readable when a frame is ready or a reopen is due; then call read_frame() or service().
+  virtual int fd() const = 0;
+  virtual CameraState state() const = 0;
+  // The last error, naming the device and what failed; empty when none.
+  virtual const std::string& last_error() const = 0;
+  // Non-blocking: true and `out` filled (buffer reused) when a frame was ready.
+  virtual bool read_frame(RgbImage& out) = 0;
+  // Retries a lost device when its reopen timer is due.
+  virtual void service() = 0;
+  // Waits up to `timeout` for one frame (for checks and hal-test, not the frame loop).
+  bool capture(RgbImage& out, std::chrono::milliseconds timeout);
+};
+
+}  // namespace hal

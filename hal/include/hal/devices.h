@@ -1,0 +1,36 @@
+#pragma once
+// Opens a board's devices with the chosen backend. Whatever is missing is reported in `problems` and
+// left out (or, for the camera, retried); the player goes on with the rest.
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hal/board.h"
+#include "hal/buttons.h"
+#include "hal/camera.h"
+#include "hal/status.h"
+
+namespace hal {
+
+enum class Backend : std::uint8_t { Linux, Mock };
+bool parse_backend(std::string_view text, Backend& out);
+
+struct Devices {
+  std::unique_ptr<Buttons> buttons;  // never null; a button whose line is missing never fires
+  std::unique_ptr<Status> status;    // never null; a missing LED is skipped
+  std::unique_ptr<Camera> camera;    // null only when the board has no camera
+  std::vector<std::string> problems;
+};
+
+Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clock);
+
+// The linux backends, also usable on their own. Missing lines are appended to `problems`.
+std::unique_ptr<Buttons> open_gpio_buttons(const std::vector<ButtonConfig>& buttons, const std::string& consumer,
+                                           const Clock& clock, std::vector<std::string>& problems);
+std::unique_ptr<LedSink> open_gpio_leds(const std::vector<LedConfig>& leds, const std::string& consumer,
+                                        std::vector<std::string>& problems);
+// Never null: a device that cannot be opened yields a camera in state Lost that retries.
+std::unique_ptr<Camera> open_v4l2_camera(const CameraConfig& config);
+
+}  // namespace hal

@@ -1,0 +1,182 @@
+#include "hal/board.h"
+
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace hal {
+
+std::string GpioLine::describe() const {
+  std::string s = line_name.empty() ? chip + ":" + std::to_string(offset) : "line " + line_name;
+  if (!line_name.empty() && !chip.empty()) s += " on " + chip;
+  return s;
+}
+
+namespace {
+
+// Typed field access whose errors name the file, the field and what was expected.
+class Fields {
+public:
+  Fields(const toml::table& t, std::string source, std::string prefix)
+      : t_(t), source_(std::move(source)), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const {
+    std::string got = "nothing";
+    if (const toml::node* n = t_.get(key)) {
+      std::ostringstream os;
+      os << n->type();
+      got = os.str();
+    }
+    throw ConfigError(source_ + ": " + prefix_ + key + ": expected " + expected + ", got " + got);
+  }
+  std::string str(const std::string& key, std::string fallback, bool required = false) const {
+    const toml::node* n = t_.get(key);
+    if (!n) {
+      if (required) fail(key, "a string");
+      return fallback;
+    }
+    if (auto v = n->value<std::string>(); v && n->is_string()) return *v;
+    fail(key, "a string");
+  }
+  long long integer(const std::string& key, long long fallback, long long lo, long long hi) const {
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    auto v = n->value<long long>();
+    if (!n->is_integer() || !v || *v < lo || *v > hi)
+      fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return *v;
+  }
+  bool boolean(const std::string& key, bool fallback) const {
+    const toml::node* n = t_.get(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "true or false");
+    return *n->value<bool>();
+  }
+  const std::string& source() const { return source_; }
+  const std::string& prefix() const { return prefix_; }
+
+private:
+  const toml::table& t_;
+  std::string source_, prefix_;
+};
+
+GpioLine read_line(const Fields& f) {
+  GpioLine l;
+  l.line_name = f.str("line", "");
+  l.chip = f.str("chip", "");
+  l.offset = static_cast<int>(f.integer("offset", -1, 0, 1023));
+  if (l.line_name.empty() && (l.chip.empty() || l.offset < 0))
+    f.fail("line", "a line name, or 'chip' and 'offset'");
+  l.active_low = f.boolean("active_low", false);
+  const std::string bias = f.str("bias", "as-is");
+  if (bias == "as-is") l.bias = Bias::AsIs;
+  else if (bias == "disable") l.bias = Bias::Disable;
+  else if (bias == "pull-up") l.bias = Bias::PullUp;
+  else if (bias == "pull-down") l.bias = Bias::PullDown;
+  else f.fail("bias", "one of as-is, disable, pull-up, pull-down");
+  return l;
+}
+
+ButtonTiming read_timing(const Fields& f, ButtonTiming t) {
+  using std::chrono::milliseconds;
+  t.debounce = milliseconds(f.integer("debounce_ms", std::chrono::duration_cast<milliseconds>(t.debounce).count(), 0, 1000));
+  t.long_press = milliseconds(f.integer("long_press_ms", std::chrono::duration_cast<milliseconds>(t.long_press).count(), 0, 60000));
+  t.repeat_delay = milliseconds(f.integer("repeat_delay_ms", std::chrono::duration_cast<milliseconds>(t.repeat_delay).count(), 0, 60000));
+  t.repeat_interval = milliseconds(f.integer("repeat_interval_ms", std::chrono::duration_cast<milliseconds>(t.repeat_interval).count(), 10, 60000));
+  return t;
+}
+
+std::string resolve(const std::string& source, const std::string& path) {
+  if (path.empty() || path[0] == '/') return path;
+  const auto slash = source.rfind('/');
+  return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
+}
+
+}  // namespace
+
+BoardConfig parse_board(const std::string& toml_text, const std::string& source_name) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << source_name << ":" << e.source().begin.line << ":" << e.source().begin.column << ": " << e.description();
+    throw ConfigError(os.str());
+  }
+  BoardConfig b;
+  b.source = source_name;
+  const Fields top(root, source_name, "");
+  auto table = [&](const char* key) -> const toml::table* {
+    const toml::node* n = root.get(key);
+    if (n && !n->is_table()) top.fail(key, "a table");
+    return n ? n->as_table() : nullptr;
+  };
+  auto array = [&](const char* key) -> const toml::array* {
+    const toml::node* n = root.get(key);
+    if (n && !n->is_array_of_tables()) top.fail(key, "an array of tables ([[" + std::string(key) + "]])");
+    return n ? n->as_array() : nullptr;
+  };
+
+  if (const auto* t = table("board")) {
+    const Fields f(*t, source_name, "board.");
+    b.name = f.str("name", "");
+    b.consumer = f.str("consumer", b.consumer);
+    b.status_file = f.str("status_file", "");
+  }
+  ButtonTiming defaults;
+  if (const auto* t = table("buttons")) defaults = read_timing(Fields(*t, source_name, "buttons."), defaults);
+  if (const auto* a = array("button")) {
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const Fields f(*a->get(i)->as_table(), source_name, "button[" + std::to_string(i) + "].");
+      ButtonConfig c;
+      c.name = f.str("name", "", true);
+      c.line = read_line(f);
+      c.timing = read_timing(f, defaults);
+      b.buttons.push_back(std::move(c));
+    }
+  }
+  if (b.buttons.size() > 255) top.fail("button", "at most 255 buttons");
+  if (const auto* a = array("led")) {
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const Fields f(*a->get(i)->as_table(), source_name, "led[" + std::to_string(i) + "].");
+      LedConfig c;
+      c.name = f.str("name", "", true);
+      c.line = read_line(f);
+      b.leds.push_back(std::move(c));
+    }
+  }
+  if (const auto* t = table("camera")) {
+    const Fields f(*t, source_name, "camera.");
+    CameraConfig c;
+    c.device = f.str("device", "", true);
+    c.width = static_cast<int>(f.integer("width", c.width, 16, 8192));
+    c.height = static_cast<int>(f.integer("height", c.height, 16, 8192));
+    if (!parse_pixel_format(f.str("format", "auto"), c.format)) f.fail("format", "one of auto, mjpeg, yuyv, rgb24");
+    c.buffers = static_cast<int>(f.integer("buffers", c.buffers, 2, 32));
+    c.reopen_interval = std::chrono::milliseconds(f.integer("reopen_interval_ms", c.reopen_interval.count(), 100, 600000));
+    b.camera = c;
+  }
+  if (const auto* t = table("mock")) {
+    const Fields f(*t, source_name, "mock.");
+    b.mock_button_script = resolve(source_name, f.str("button_script", ""));
+    if (const toml::node* n = t->get("camera_images")) {
+      const toml::array* imgs = n->as_array();
+      if (!imgs) f.fail("camera_images", "an array of image paths");
+      for (const auto& v : *imgs) {
+        if (!v.is_string()) f.fail("camera_images", "an array of strings");
+        b.mock_camera_images.push_back(resolve(source_name, *v.value<std::string>()));
+      }
+    }
+  }
+  return b;
+}
+
+BoardConfig load_board(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open board file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_board(ss.str(), path);
+}
+
+}  // namespace hal

@@ -1,0 +1,121 @@
+#include "button_logic.h"
+
+#include <algorithm>
+
+namespace hal {
+
+std::string_view to_string(ButtonAction a) {
+  switch (a) {
+    case ButtonAction::Press: return "press";
+    case ButtonAction::Release: return "release";
+    case ButtonAction::LongPress: return "long-press";
+    case ButtonAction::Repeat: return "repeat";
+  }
+  return "?";
+}
+
+namespace detail {
+
+ButtonLogic::ButtonLogic(std::vector<ButtonTiming> timing) {
+  states_.resize(timing.size());
+  for (std::size_t i = 0; i < timing.size(); ++i) states_[i].timing = timing[i];
+}
+
+void ButtonLogic::set_initial(std::size_t button, bool pressed) {
+  State& s = states_[button];
+  s.raw = s.stable = pressed;
+  s.settle_pending = false;
+  // Held at start-up: no long press or repeat either, until it is released and pressed again.
+  s.long_sent = true;
+  s.next_repeat = Nanos::max();
+}
+
+Nanos ButtonLogic::deadline(const State& s) const {
+  Nanos d = Nanos::max();
+  if (s.settle_pending) d = s.raw_since + s.timing.debounce;
+  if (s.stable) {
+    if (!s.long_sent && s.timing.long_press.count() > 0) d = std::min(d, s.pressed_at + s.timing.long_press);
+    d = std::min(d, s.next_repeat);
+  }
+  return d;
+}
+
+Nanos ButtonLogic::next_deadline() const {
+  Nanos d = Nanos::max();
+  for (const State& s : states_) d = std::min(d, deadline(s));
+  return d;
+}
+
+void ButtonLogic::edge(std::size_t button, bool pressed, Nanos t) {
+  advance(t - Nanos(1));  // a deadline exactly at the edge loses to the edge: the level moved
+  State& s = states_[button];
+  s.raw = pressed;
+  s.raw_since = t;
+  s.settle_pending = true;
+  if (s.timing.debounce.count() == 0) fire(button, s);
+}
+
+void ButtonLogic::fire(std::size_t button, State& s) {
+  const Nanos settle = s.raw_since + s.timing.debounce;
+  if (s.settle_pending && settle <= deadline(s)) {
+    s.settle_pending = false;
+    if (s.raw == s.stable) return;  // bounced back to where it was: nothing happened
+    s.stable = s.raw;
+    if (s.stable) {
+      s.pressed_at = s.raw_since;
+      s.long_sent = false;
+      s.next_repeat = s.timing.repeat_delay.count() > 0 ? s.pressed_at + s.timing.repeat_delay : Nanos::max();
+      push(button, ButtonAction::Press, s.raw_since);
+    } else {
+      s.next_repeat = Nanos::max();
+      push(button, ButtonAction::Release, s.raw_since);
+    }
+    return;
+  }
+  const Nanos long_at = s.pressed_at + s.timing.long_press;
+  if (!s.long_sent && s.timing.long_press.count() > 0 && long_at <= s.next_repeat) {
+    s.long_sent = true;
+    push(button, ButtonAction::LongPress, long_at);
+    return;
+  }
+  push(button, ButtonAction::Repeat, s.next_repeat);
+  s.next_repeat += std::max(s.timing.repeat_interval, Nanos(std::chrono::milliseconds(1)));
+}
+
+void ButtonLogic::advance(Nanos now) {
+  for (;;) {
+    std::size_t best = states_.size();
+    Nanos best_time = Nanos::max();
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      const Nanos d = deadline(states_[i]);
+      if (d < best_time) {
+        best_time = d;
+        best = i;
+      }
+    }
+    if (best == states_.size() || best_time > now) return;
+    fire(best, states_[best]);
+  }
+}
+
+void ButtonLogic::push(std::size_t button, ButtonAction a, Nanos t) {
+  if (size_ == queue_.size()) {
+    ++dropped_;
+    return;
+  }
+  queue_[(head_ + size_) % queue_.size()] = ButtonEvent{static_cast<std::uint8_t>(button), a, t};
+  ++size_;
+}
+
+std::size_t ButtonLogic::drain(std::span<ButtonEvent> out) {
+  const std::size_t n = std::min(out.size(), size_);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = queue_[head_];
+    head_ = (head_ + 1) % queue_.size();
+  }
+  size_ -= n;
+  return n;
+}
+
+}  // namespace detail
+}  // namespace hal

@@ -1,0 +1,85 @@
+#include "hal/convert.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+
+namespace hal {
+
+namespace {
+
+std::uint8_t clamp8(int v) { return static_cast<std::uint8_t>(std::clamp(v, 0, 255)); }
+
+// BT.601 limited range in 8.8 fixed point: R = 1.164(Y-16) + 1.596(V-128), etc.
+void yuv_to_rgb(int y, int u, int v, std::uint8_t* rgb) {
+  const int c = 298 * (y - 16);
+  const int d = u - 128;
+  const int e = v - 128;
+  rgb[0] = clamp8((c + 409 * e + 128) >> 8);
+  rgb[1] = clamp8((c - 100 * d - 208 * e + 128) >> 8);
+  rgb[2] = clamp8((c + 516 * d + 128) >> 8);
+}
+
+}  // namespace
+
+void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int stride, RgbImage& out) {
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* row = src.data() + static_cast<std::size_t>(y) * stride;
+    std::uint8_t* dst = out.at(0, y);
+    // Each 4-byte group Y0 U Y1 V carries two pixels sharing one chroma pair.
+    for (int x = 0; x + 1 < width; x += 2, row += 4, dst += 6) {
+      yuv_to_rgb(row[0], row[1], row[3], dst);
+      yuv_to_rgb(row[2], row[1], row[3], dst + 3);
+    }
+    if (width % 2 == 1) yuv_to_rgb(row[0], row[1], row[3], dst);
+  }
+}
+
+struct MjpegDecoder::Impl {
+  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create("jpg");
+};
+
+MjpegDecoder::MjpegDecoder() : impl_(std::make_unique<Impl>()) {}
+MjpegDecoder::~MjpegDecoder() = default;
+MjpegDecoder::MjpegDecoder(MjpegDecoder&&) noexcept = default;
+MjpegDecoder& MjpegDecoder::operator=(MjpegDecoder&&) noexcept = default;
+
+bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std::string* error) {
+  auto& in = impl_->input;
+  if (!in) {
+    if (error) *error = "JPEG decoder: OpenImageIO has no JPEG reader";
+    return false;
+  }
+  // The decoder reads the frame where the driver mapped it, through an in-memory I/O proxy.
+  OIIO::Filesystem::IOMemReader reader(const_cast<std::uint8_t*>(jpeg.data()), jpeg.size());
+  in->set_ioproxy(&reader);
+  OIIO::ImageSpec spec;
+  const bool opened = in->open("frame.jpg", spec, OIIO::ImageSpec());
+  bool ok = opened;
+  if (opened && (spec.width != out.width || spec.height != out.height)) {
+    if (error)
+      *error = "MJPEG frame: expected " + std::to_string(out.width) + "x" + std::to_string(out.height) + ", got " +
+               std::to_string(spec.width) + "x" + std::to_string(spec.height);
+    ok = false;
+  } else if (opened) {
+    // Grey JPEGs come through as one channel: read it, then replicate in place from the back.
+    const int channels = std::min(spec.nchannels, 3);
+    ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out.pixels.data(),
+                        static_cast<OIIO::stride_t>(3), OIIO::AutoStride, OIIO::AutoStride);
+    if (ok && channels == 1) {
+      for (std::size_t i = static_cast<std::size_t>(out.width) * out.height; i-- > 0;) {
+        const std::uint8_t v = out.pixels[i * 3];
+        out.pixels[i * 3 + 1] = out.pixels[i * 3 + 2] = v;
+      }
+    }
+    if (!ok && error) *error = "MJPEG frame: " + in->geterror();
+  } else if (error) {
+    *error = "MJPEG frame: not a decodable JPEG: " + in->geterror();
+  }
+  in->close();
+  in->set_ioproxy(nullptr);
+  return ok;
+}
+
+}  // namespace hal

@@ -1,0 +1,65 @@
+#include "hal/devices.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "hal/mock.h"
+
+namespace hal {
+
+bool parse_backend(std::string_view text, Backend& out) {
+  if (text == "linux") out = Backend::Linux;
+  else if (text == "mock") out = Backend::Mock;
+  else return false;
+  return true;
+}
+
+CameraModel typical_camera_model() {
+  CameraModel m;
+  m.screen_corners = {{{70, 90}, {575, 100}, {565, 390}, {80, 400}}};
+  m.blur_sigma = 0.8;
+  m.noise_sigma = 2.0;
+  m.exposure = 0.9;
+  m.gamma = 1.1;
+  m.vignetting = 0.2;
+  return m;
+}
+
+Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clock) {
+  Devices d;
+  std::vector<std::string> led_names;
+  for (const auto& l : board.leds) led_names.push_back(l.name);
+
+  if (backend == Backend::Linux) {
+    d.buttons = open_gpio_buttons(board.buttons, board.consumer, clock, d.problems);
+    d.status = std::make_unique<Status>(led_names, open_gpio_leds(board.leds, board.consumer, d.problems), clock,
+                                        board.status_file);
+    if (board.camera) {
+      d.camera = open_v4l2_camera(*board.camera);
+      if (d.camera->state() != CameraState::Streaming) d.problems.push_back("camera: " + d.camera->last_error());
+    }
+    return d;
+  }
+
+  std::vector<MockButtonSpec> specs;
+  for (const auto& b : board.buttons) specs.push_back({b.name, b.timing});
+  std::vector<ScriptStep> script;
+  if (!board.mock_button_script.empty()) {
+    std::ifstream in(board.mock_button_script);
+    if (!in) throw ConfigError(board.source + ": mock.button_script: cannot open '" + board.mock_button_script + "'");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    script = parse_button_script(ss.str(), board.mock_button_script);
+  }
+  d.buttons = std::make_unique<MockButtons>(std::move(specs), std::move(script), clock);
+  d.status = std::make_unique<Status>(led_names, std::make_unique<RecordingLedSink>(clock, led_names.size()), clock,
+                                      board.status_file);
+  if (!board.mock_camera_images.empty()) {
+    d.camera = std::make_unique<MockCamera>(board.mock_camera_images);
+  } else if (board.camera) {
+    d.camera = std::make_unique<MockCamera>(typical_camera_model());
+  }
+  return d;
+}
+
+}  // namespace hal

@@ -1,0 +1,205 @@
+#include "hal/status.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <nlohmann/json.hpp>
+
+#include "fd.h"
+#include "hal/mock.h"
+
+namespace hal {
+
+namespace {
+
+using std::chrono::milliseconds;
+
+// A pattern is a period and the phases within it where the level toggles, starting on.
+struct PatternShape {
+  Nanos period;
+  std::array<Nanos, 4> toggles;
+  std::size_t count;
+};
+
+PatternShape shape(LedPattern p) {
+  switch (p) {
+    case LedPattern::Off:
+    case LedPattern::On: return {Nanos::max(), {}, 0};
+    case LedPattern::BlinkSlow: return {milliseconds(1000), {milliseconds(500)}, 1};
+    case LedPattern::BlinkFast: return {milliseconds(200), {milliseconds(100)}, 1};
+    // Two short beats then a pause, the rhythm people read as "alive".
+    case LedPattern::Heartbeat:
+      return {milliseconds(1200), {milliseconds(100), milliseconds(250), milliseconds(350)}, 3};
+  }
+  return {Nanos::max(), {}, 0};
+}
+
+}  // namespace
+
+std::string_view to_string(LedPattern p) {
+  switch (p) {
+    case LedPattern::Off: return "off";
+    case LedPattern::On: return "on";
+    case LedPattern::BlinkSlow: return "blink-slow";
+    case LedPattern::BlinkFast: return "blink-fast";
+    case LedPattern::Heartbeat: return "heartbeat";
+  }
+  return "?";
+}
+
+bool parse_led_pattern(std::string_view text, LedPattern& out) {
+  for (auto p : {LedPattern::Off, LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat}) {
+    if (to_string(p) == text) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool pattern_level(LedPattern p, Nanos elapsed) {
+  if (p == LedPattern::Off) return false;
+  if (p == LedPattern::On) return true;
+  const PatternShape s = shape(p);
+  const Nanos phase = elapsed % s.period;
+  std::size_t passed = 0;
+  while (passed < s.count && s.toggles[passed] <= phase) ++passed;
+  return passed % 2 == 0;
+}
+
+Nanos pattern_next_change(LedPattern p, Nanos elapsed) {
+  if (p == LedPattern::Off || p == LedPattern::On) return Nanos::max();
+  const PatternShape s = shape(p);
+  const Nanos phase = elapsed % s.period;
+  const Nanos period_start = elapsed - phase;
+  for (std::size_t i = 0; i < s.count; ++i)
+    if (s.toggles[i] > phase) return period_start + s.toggles[i];
+  return period_start + s.period;
+}
+
+void RecordingLedSink::set(std::size_t led, bool on) {
+  if (levels_[led] == on) return;
+  levels_[led] = on;
+  changes->push_back({led, on, clock_.now()});
+}
+
+Status::Status(std::vector<std::string> led_names, std::unique_ptr<LedSink> sink, const Clock& clock,
+               std::string status_file)
+    : names_(std::move(led_names)),
+      leds_(names_.size()),
+      sink_(std::move(sink)),
+      clock_(clock),
+      file_(std::move(status_file)),
+      timer_(detail::make_timer()) {
+  for (std::size_t i = 0; i < leds_.size(); ++i) sink_->set(i, false);
+}
+
+Status::~Status() {
+  for (std::size_t i = 0; i < leds_.size(); ++i) sink_->set(i, false);
+}
+
+int Status::fd() const { return timer_.get(); }
+
+std::optional<std::size_t> Status::find_led(std::string_view name) const {
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (names_[i] == name) return i;
+  return std::nullopt;
+}
+
+void Status::set_pattern(std::size_t led, LedPattern p) {
+  leds_[led].pattern = p;
+  leds_[led].since = clock_.now();
+  update();
+}
+
+void Status::update() {
+  detail::drain(timer_.get());
+  const Nanos now = clock_.now();
+  for (std::size_t i = 0; i < leds_.size(); ++i) {
+    Led& led = leds_[i];
+    const bool level = pattern_level(led.pattern, now - led.since);
+    if (level != led.level) {
+      led.level = level;
+      sink_->set(i, level);
+    }
+  }
+  arm_timer();
+}
+
+void Status::arm_timer() {
+  const Nanos now = clock_.now();
+  Nanos next = Nanos::max();
+  for (const Led& led : leds_) {
+    const Nanos change = pattern_next_change(led.pattern, now - led.since);
+    if (change != Nanos::max()) next = std::min(next, led.since + change);
+  }
+  detail::arm_timer(timer_.get(), next);
+}
+
+std::string report_to_json(const StatusReport& report) {
+  nlohmann::json j;
+  j["state"] = report.state;
+  j["current_item"] = report.current_item;
+  j["errors"] = report.errors;
+  if (report.last_check) {
+    const auto& c = *report.last_check;
+    j["last_check"] = {{"passed", c.passed},
+                       {"score", c.score},
+                       {"reason", c.reason},
+                       {"monotonic_ms", std::chrono::duration_cast<milliseconds>(c.time).count()}};
+  } else {
+    j["last_check"] = nullptr;
+  }
+  return j.dump(2) + "\n";
+}
+
+bool Status::write_report(const StatusReport& report, std::string* error) {
+  if (file_.empty()) return true;
+  auto fail = [&](const std::string& what, int err) {
+    if (error) *error = file_ + ": " + what + ": " + detail::errno_text(err);
+    return false;
+  };
+  nlohmann::json j = nlohmann::json::parse(report_to_json(report));
+  for (std::size_t i = 0; i < leds_.size(); ++i) j["leds"][names_[i]] = std::string(to_string(leds_[i].pattern));
+  const std::string text = j.dump(2) + "\n";
+
+  // The temporary lives in the same directory so rename() is atomic (same file system).
+  std::string tmp = file_ + ".XXXXXX";
+  UniqueFd fd(mkostemp(tmp.data(), O_CLOEXEC));
+  if (!fd) return fail("cannot create temporary " + tmp, errno);
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd.get(), text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::unlink(tmp.c_str());
+      return fail("write " + tmp, err);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  // Readable by monitoring tools that run as another user.
+  fchmod(fd.get(), 0644);
+  if (fsync(fd.get()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    return fail("fsync " + tmp, err);
+  }
+  fd.reset();
+  if (std::rename(tmp.c_str(), file_.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    return fail("rename " + tmp, err);
+  }
+  // fsync the directory too, or a power cut can lose the rename itself.
+  const auto slash = file_.rfind('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : file_.substr(0, slash));
+  if (UniqueFd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)); dfd) fsync(dfd.get());
+  return true;
+}
+
+}  // namespace hal

@@ -1,0 +1,91 @@
+// Board files: the shipped ones parse, and errors name file, field and expectation.
+#include <gtest/gtest.h>
+
+#include "hal/board.h"
+
+#ifndef HAL_SOURCE_DIR
+#define HAL_SOURCE_DIR ""
+#endif
+
+namespace hal {
+namespace {
+
+std::string error_of(const std::string& toml) {
+  try {
+    parse_board(toml, "b.toml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Board, ParsesButtonsLedsCameraAndDefaults) {
+  const BoardConfig b = parse_board(R"(
+[board]
+name = "test"
+status_file = "/run/x/status.json"
+[buttons]
+debounce_ms = 30
+[[button]]
+name = "play"
+line = "GPIO17"
+active_low = true
+bias = "pull-up"
+[[button]]
+name = "next"
+chip = "gpiochip0"
+offset = 27
+repeat_delay_ms = 400
+[[led]]
+name = "status"
+chip = "1"
+offset = 3
+[camera]
+device = "/dev/v4l/by-id/usb-cam-video-index0"
+format = "yuyv"
+width = 640
+height = 480
+[mock]
+button_script = "buttons.script"
+)", "/etc/player/board.toml");
+  ASSERT_EQ(b.buttons.size(), 2u);
+  EXPECT_EQ(b.buttons[0].line.line_name, "GPIO17");
+  EXPECT_TRUE(b.buttons[0].line.active_low);
+  EXPECT_EQ(b.buttons[0].line.bias, Bias::PullUp);
+  EXPECT_EQ(b.buttons[0].timing.debounce, std::chrono::milliseconds(30));
+  EXPECT_EQ(b.buttons[1].line.describe(), "gpiochip0:27");
+  EXPECT_EQ(b.buttons[1].timing.repeat_delay, std::chrono::milliseconds(400));
+  ASSERT_EQ(b.leds.size(), 1u);
+  ASSERT_TRUE(b.camera.has_value());
+  EXPECT_EQ(b.camera->format, PixelFormat::Yuyv);
+  EXPECT_EQ(b.camera->width, 640);
+  EXPECT_EQ(b.mock_button_script, "/etc/player/buttons.script");
+  EXPECT_EQ(b.status_file, "/run/x/status.json");
+}
+
+TEST(Board, ErrorsNameFileFieldAndExpectation) {
+  EXPECT_EQ(error_of("[[button]]\nname = \"a\"\n"), "b.toml: button[0].line: expected a line name, or 'chip' and 'offset', got nothing");
+  EXPECT_EQ(error_of("[[button]]\nname = \"a\"\nchip = \"gpiochip0\"\noffset = \"x\"\n"),
+            "b.toml: button[0].offset: expected an integer in 0..1023, got string");
+  EXPECT_EQ(error_of("[[led]]\nname = \"a\"\nline = \"L\"\nbias = \"up\"\n"),
+            "b.toml: led[0].bias: expected one of as-is, disable, pull-up, pull-down, got string");
+  EXPECT_EQ(error_of("[camera]\ndevice = \"/dev/video0\"\nformat = \"h264\"\n"),
+            "b.toml: camera.format: expected one of auto, mjpeg, yuyv, rgb24, got string");
+  EXPECT_EQ(error_of("[camera]\nwidth = 640\n"), "b.toml: camera.device: expected a string, got nothing");
+  EXPECT_EQ(error_of("button = 3\n"), "b.toml: button: expected an array of tables ([[button]]), got integer");
+  EXPECT_EQ(error_of("[board\n").rfind("b.toml:1:", 0), 0u);
+  EXPECT_THROW(load_board("/nonexistent/board.toml"), ConfigError);
+}
+
+TEST(Board, ShippedBoardFilesParse) {
+  for (const char* f : {"raspberry-pi-4.toml", "raspberry-pi-5.toml", "mock.toml"}) {
+    SCOPED_TRACE(f);
+    const BoardConfig b = load_board(std::string(HAL_SOURCE_DIR) + "/board/" + f);
+    EXPECT_FALSE(b.buttons.empty());
+    EXPECT_FALSE(b.leds.empty());
+    EXPECT_TRUE(b.camera.has_value());
+  }
+}
+
+}  // namespace
+}  // namespace hal

@@ -1,0 +1,131 @@
+// Debounce, long press and auto-repeat, driven by a script and a manual clock.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "hal/board.h"
+#include "hal/mock.h"
+
+namespace hal {
+namespace {
+
+using std::chrono::milliseconds;
+
+struct Rec {
+  std::string button;
+  ButtonAction action;
+  long long ms;
+  bool operator==(const Rec&) const = default;
+};
+std::ostream& operator<<(std::ostream& os, const Rec& r) {
+  return os << r.button << " " << to_string(r.action) << " @" << r.ms;
+}
+
+// Steps the clock 1 ms at a time, as a poll loop would wake, collecting every event.
+std::vector<Rec> run(MockButtons& b, ManualClock& clock, long long until_ms) {
+  std::vector<Rec> out;
+  std::array<ButtonEvent, 4> ev;
+  while (clock.now() < milliseconds(until_ms)) {
+    clock.advance(milliseconds(1));
+    for (std::size_t n; (n = b.read(ev)) > 0;)
+      for (std::size_t i = 0; i < n; ++i)
+        out.push_back({std::string(b.name(ev[i].button)), ev[i].action,
+                       std::chrono::duration_cast<milliseconds>(ev[i].time).count()});
+  }
+  return out;
+}
+
+ButtonTiming timing(int debounce, int long_press, int repeat_delay = 0, int repeat_interval = 100) {
+  return {milliseconds(debounce), milliseconds(long_press), milliseconds(repeat_delay), milliseconds(repeat_interval)};
+}
+
+TEST(Buttons, BounceIsFilteredAndTimestampIsWhenTheLevelSettled) {
+  ManualClock clock;
+  MockButtons b({{"play", timing(20, 0)}},
+                parse_button_script("100 play press\n103 play release\n106 play press\n"
+                                    "300 play release\n305 play press\n309 play release\n",
+                                    "bounce"),
+                clock);
+  const auto events = run(b, clock, 500);
+  EXPECT_EQ(events, (std::vector<Rec>{{"play", ButtonAction::Press, 106}, {"play", ButtonAction::Release, 309}}));
+}
+
+TEST(Buttons, PulseShorterThanDebounceIsIgnored) {
+  ManualClock clock;
+  MockButtons b({{"play", timing(20, 0)}}, parse_button_script("100 play press\n110 play release\n", "glitch"), clock);
+  EXPECT_TRUE(run(b, clock, 300).empty());
+}
+
+TEST(Buttons, EventIsNotReportedBeforeTheDebounceTimeHasPassed) {
+  ManualClock clock;
+  MockButtons b({{"play", timing(20, 0)}}, parse_button_script("100 play press\n", "s"), clock);
+  EXPECT_TRUE(run(b, clock, 119).empty());
+  EXPECT_EQ(run(b, clock, 121), (std::vector<Rec>{{"play", ButtonAction::Press, 100}}));
+}
+
+TEST(Buttons, LongPressFiresOnceAtItsDeadlineWhileHeld) {
+  ManualClock clock;
+  MockButtons b({{"check", timing(10, 800)}},
+                parse_button_script("100 check press\n1500 check release\n2000 check press\n2300 check release\n", "s"),
+                clock);
+  EXPECT_EQ(run(b, clock, 2600), (std::vector<Rec>{{"check", ButtonAction::Press, 100},
+                                                   {"check", ButtonAction::LongPress, 900},
+                                                   {"check", ButtonAction::Release, 1500},
+                                                   {"check", ButtonAction::Press, 2000},
+                                                   {"check", ButtonAction::Release, 2300}}));
+}
+
+TEST(Buttons, AutoRepeatStartsAfterDelayAndStopsOnRelease) {
+  ManualClock clock;
+  MockButtons b({{"next", timing(10, 0, 400, 100)}}, parse_button_script("0 next press\n650 next release\n", "s"), clock);
+  EXPECT_EQ(run(b, clock, 1000), (std::vector<Rec>{{"next", ButtonAction::Press, 0},
+                                                   {"next", ButtonAction::Repeat, 400},
+                                                   {"next", ButtonAction::Repeat, 500},
+                                                   {"next", ButtonAction::Repeat, 600},
+                                                   {"next", ButtonAction::Release, 650}}));
+}
+
+TEST(Buttons, EventsOfSeveralButtonsComeOutInTimeOrderEvenWhenReadLate) {
+  ManualClock clock;
+  MockButtons b({{"a", timing(5, 300)}, {"b", timing(5, 100)}},
+                parse_button_script("0 a press\n50 b press\n400 a release\n400 b release\n", "s"), clock);
+  clock.set(milliseconds(1000));  // the app was busy: everything is read in one go
+  std::array<ButtonEvent, 16> ev;
+  const std::size_t n = b.read(ev);
+  ASSERT_EQ(n, 6u);
+  for (std::size_t i = 1; i < n; ++i) EXPECT_LE(ev[i - 1].time, ev[i].time) << i;
+  EXPECT_EQ(ev[1].action, ButtonAction::Press);
+  EXPECT_EQ(ev[1].button, 1);
+  EXPECT_EQ(ev[2].action, ButtonAction::LongPress);
+  EXPECT_EQ(ev[2].time, milliseconds(150));
+}
+
+TEST(Buttons, InjectedKeysGoThroughTheSameDebounce) {
+  ManualClock clock;
+  MockButtons b({{"play", timing(20, 0)}}, {}, clock);
+  clock.set(milliseconds(10));
+  b.inject(0, true);
+  EXPECT_TRUE(run(b, clock, 25).empty());
+  EXPECT_EQ(run(b, clock, 40), (std::vector<Rec>{{"play", ButtonAction::Press, 10}}));
+}
+
+TEST(Buttons, ScriptErrorsNameFileLineAndField) {
+  auto message = [](const std::string& text) {
+    try {
+      parse_button_script(text, "buttons.script");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("# ok\n100 play press\nabc play press\n"),
+            "buttons.script:3: time: expected non-negative milliseconds, got 'abc'");
+  EXPECT_EQ(message("100 play push\n"), "buttons.script:1: action: expected 'press' or 'release', got 'push'");
+  EXPECT_EQ(message("100 a press\n50 a release\n"),
+            "buttons.script:2: time: expected times that do not decrease, got 50 after 100");
+  ManualClock clock;
+  EXPECT_THROW(MockButtons({{"play", {}}}, parse_button_script("1 stop press\n", "s"), clock), ConfigError);
+}
+
+}  // namespace
+}  // namespace hal

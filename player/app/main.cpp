@@ -1,5 +1,6 @@
 // The player's command line: a thin layer over the app library.
 #include "app/render_command.h"
+#include "hal/hal_test.h"
 #include "platform/platform.h"
 #include "scene/procedural.h"
 #include "ssao/params.h"
@@ -76,7 +77,18 @@ int main(int argc, char** argv) {
   info_cmd->add_option("--platform", info_platform, "GL platform: egl, osmesa or auto")
       ->check(CLI::IsMember(platform::names()))->capture_default_str();
 
+  hal::HalTestOptions hal_test;
+  auto* hal_cmd = cli.add_subcommand("hal-test",
+                                     "Wiring check for a new board: print button events, cycle the LEDs, capture a frame and save it");
+  hal_cmd->add_option("--board", hal_test.board_file, "Board description (TOML, see board/); default: a built-in mock board");
+  hal_cmd->add_option("--hal", hal_test.backend, "Hardware backend")->check(CLI::IsMember({"linux", "mock"}))->capture_default_str();
+  hal_cmd->add_option("--capture", hal_test.capture_path, "Where to save the captured frame")->capture_default_str();
+  hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
+      ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+
   CLI11_PARSE(cli, argc, argv);
+
+  if (hal_cmd->parsed()) return hal::run_hal_test(hal_test, std::cout);
 
   if (render_cmd->parsed()) {
     int width = 0, height = 0;

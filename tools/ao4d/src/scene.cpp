@@ -35,7 +35,9 @@ double box_entry(const Vec4& lo, const Vec4& hi, const Vec4& origin, const Vec4&
         if (t1 > t_near) t_near = t1;
         if (t2 < t_far) t_far = t2;
     }
-    return t_near <= t_far ? t_near : std::numeric_limits<double>::infinity();
+    // The slab distances and a cell's plane distance are rounded differently; without this slack a
+    // hit on a box face (every flat cell's box is flat) can be pruned by an ulp.
+    return t_near <= t_far + 1e-12 * std::abs(t_far) ? t_near : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace

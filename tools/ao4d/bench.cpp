@@ -59,8 +59,8 @@ void BM_Volume50(benchmark::State& state, const std::string& shape) {
 int main(int argc, char** argv) {
     // Grids chosen so the shapes span about 10^4 to 10^5 cells (the "cells" counter reports them).
     const std::pair<const char*, std::pair<int, int>> shapes[] = {
-        {"hypersphere", {12, 22}}, {"tesseract", {12, 22}}, {"indented-tesseract", {12, 22}},
-        {"duocylinder", {12, 22}}, {"torus", {16, 28}}};
+        {"hypersphere", {6, 10}}, {"tesseract", {6, 9}}, {"indented-tesseract", {6, 9}},
+        {"duocylinder", {6, 10}}, {"torus", {8, 14}}};
     for (const auto& [name, grids] : shapes) {
         const std::string shape = name;
         benchmark::RegisterBenchmark(("vertex_ao/" + shape).c_str(), BM_VertexAo, shape)

@@ -73,7 +73,8 @@ void install_debug_log(const Caps& caps, bool enabled) {
   enabled = true;
 #endif
   if (!enabled || !caps.debug_output) return;
-  api.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR);
+  api.Enable(GL_DEBUG_OUTPUT_KHR);
+  api.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR);  // messages arrive inside the call that caused them
   api.DebugMessageCallback(log_debug_message, nullptr);
 }
 

@@ -103,6 +103,18 @@ EGLContext make_context(EGLDisplay display, bool debug, std::string& why) {
   return context;
 }
 
+// With a context current: loads the GL entry points and hands the display and context to a Platform.
+std::unique_ptr<Platform> finish(EGLDisplay display, EGLContext context, std::string how,
+                                 std::vector<std::string> used, std::string& error) {
+  auto platform = std::make_unique<EglPlatform>(display, context, std::move(how), std::move(used));
+  std::string load_error;
+  if (!gl::load(egl_proc, nullptr, load_error)) {
+    error = "egl: " + load_error;
+    return nullptr;  // the Platform's destructor releases the context
+  }
+  return platform;
+}
+
 }  // namespace
 
 std::unique_ptr<Platform> create_egl(bool debug, std::string& error) {
@@ -131,17 +143,10 @@ std::unique_ptr<Platform> create_egl(bool debug, std::string& error) {
         if (display == EGL_NO_DISPLAY) continue;
         std::string why;
         EGLContext context = make_context(display, debug, why);
-        if (context != EGL_NO_CONTEXT) {
-          std::string load_error;
-          if (!gl::load(egl_proc, nullptr, load_error)) {
-            error = "egl: " + load_error;
-            return nullptr;
-          }
-          return std::make_unique<EglPlatform>(
-              display, context, "EGL_EXT_platform_device (device " + std::to_string(i) + ")",
-              std::vector<std::string>{"EGL_EXT_platform_device", "EGL_EXT_device_enumeration",
-                                       "EGL_KHR_surfaceless_context"});
-        }
+        if (context != EGL_NO_CONTEXT)
+          return finish(display, context, "EGL_EXT_platform_device (device " + std::to_string(i) + ")",
+                        {"EGL_EXT_platform_device", "EGL_EXT_device_enumeration", "EGL_KHR_surfaceless_context"},
+                        error);
         attempts += "; device " + std::to_string(i) + ": " + why;
       }
     }
@@ -152,16 +157,9 @@ std::unique_ptr<Platform> create_egl(bool debug, std::string& error) {
     if (display != EGL_NO_DISPLAY) {
       std::string why;
       EGLContext context = make_context(display, debug, why);
-      if (context != EGL_NO_CONTEXT) {
-        std::string load_error;
-        if (!gl::load(egl_proc, nullptr, load_error)) {
-          error = "egl: " + load_error;
-          return nullptr;
-        }
-        return std::make_unique<EglPlatform>(
-            display, context, "EGL_MESA_platform_surfaceless",
-            std::vector<std::string>{"EGL_MESA_platform_surfaceless", "EGL_KHR_surfaceless_context"});
-      }
+      if (context != EGL_NO_CONTEXT)
+        return finish(display, context, "EGL_MESA_platform_surfaceless",
+                      {"EGL_MESA_platform_surfaceless", "EGL_KHR_surfaceless_context"}, error);
       attempts += "; surfaceless: " + why;
     }
   } else {

@@ -408,18 +408,17 @@ std::vector<glm::vec3> Renderer::read_view_normals() const {
   return normals;
 }
 
-std::vector<glm::vec2> Renderer::read_ao_raw() const {
-  const std::vector<float> rgba = read_rgba_float(ao_raw_);
+std::vector<glm::vec2> Renderer::read_ao(const gl::Texture& texture) const {
+  const std::vector<float> rgba = read_rgba_float(texture);
   std::vector<glm::vec2> ao(rgba.size() / 4);
   for (size_t i = 0; i < ao.size(); ++i) ao[i] = glm::vec2(rgba[i * 4], rgba[i * 4 + 1]);
   return ao;
 }
 
+std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(ao_raw_); }
+
 std::vector<glm::vec2> Renderer::read_ao_blurred() const {
-  const std::vector<float> rgba = read_rgba_float(settings_.blur.mode == ssao::Blur::off ? ao_raw_ : ao_blurred_);
-  std::vector<glm::vec2> ao(rgba.size() / 4);
-  for (size_t i = 0; i < ao.size(); ++i) ao[i] = glm::vec2(rgba[i * 4], rgba[i * 4 + 1]);
-  return ao;
+  return read_ao(settings_.blur.mode == ssao::Blur::off ? ao_raw_ : ao_blurred_);
 }
 
 }  // namespace render

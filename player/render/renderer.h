@@ -90,6 +90,7 @@ class Renderer {
   void draw_scene(bool depth_only, const glm::dmat4& view, const glm::mat4& projection);
   void check(int pass);
   std::vector<float> read_rgba_float(const gl::Texture& texture) const;
+  std::vector<glm::vec2> read_ao(const gl::Texture& texture) const;
 
   gl::Caps caps_;
   FrameSettings settings_;

@@ -28,6 +28,22 @@ struct Harness {
     caps = gl::query_caps();
     std::ostringstream log;
     if (!app::load_scene(scene_spec, scene, error, log)) return ::testing::AssertionFailure() << error;
+    return render_first_frame(settings, framing);
+  }
+
+  // The same for a scene built by the test.
+  ::testing::AssertionResult start(const std::string& platform_name, scene::Scene built,
+                                   const render::FrameSettings& settings, const scene::Framing& framing = {}) {
+    std::string error;
+    platform = platform::create({platform_name, true}, error);
+    if (!platform) return ::testing::AssertionFailure() << error;
+    caps = gl::query_caps();
+    scene = std::move(built);
+    return render_first_frame(settings, framing);
+  }
+
+  ::testing::AssertionResult render_first_frame(const render::FrameSettings& settings, const scene::Framing& framing) {
+    std::string error;
     if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
       return ::testing::AssertionFailure() << error;
     camera = scene::frame(scene.bounds, framing, settings.width, settings.height);

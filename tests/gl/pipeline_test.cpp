@@ -1,6 +1,7 @@
 // The GPU pipeline against the CPU reference and against values known in closed form, on both
 // headless platforms.
 #include "harness.h"
+#include "scene/procedural.h"
 #include "ssao/reference.h"
 
 #include <algorithm>
@@ -174,7 +175,7 @@ TEST_P(Pipeline, DepthPrepassDoesNotChangeThePicture) {
   EXPECT_EQ(picture, b.renderer.read_color());
 }
 
-TEST_P(Pipeline, TexturedSharedSceneRendersWithoutError) {
+TEST_P(Pipeline, SharedSceneWithoutNormalsRendersWithFiniteNormals) {
   render::FrameSettings settings = small_settings();
   Harness h;
   ASSERT_TRUE(h.start(GetParam(), std::string(PLAYER_SHARED_DIR) + "/scenes/teapot-no-normals.glb", settings));
@@ -182,6 +183,47 @@ TEST_P(Pipeline, TexturedSharedSceneRendersWithoutError) {
   const auto depth = h.renderer.read_linear_depth();
   EXPECT_GT(std::count_if(depth.begin(), depth.end(), [](float d) { return d > 0.0f; }), kSide * kSide / 8);
   for (const glm::vec3& n : h.renderer.read_view_normals()) ASSERT_FALSE(std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z));
+}
+
+TEST_P(Pipeline, BaseColorTextureLandsWhereItsUvsSay) {
+  // A square facing the camera with a 2x2 texture: red, green on the top row of the image (v = 0),
+  // blue, white below, sampled nearest. glTF puts uv (0, 0) at the image's top-left corner.
+  scene::Scene built;
+  scene::Material material;
+  material.base_color_texture = 0;
+  built.materials = {material};
+  scene::Texture texture;
+  texture.width = texture.height = 2;
+  texture.rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+  texture.mag = scene::Filter::nearest;
+  texture.mipmaps = false;
+  built.textures = {texture};
+  scene::Mesh quad = scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);
+  // make_quad's uv runs up the square; flip v so the image's top row is at the top of the square.
+  for (scene::Vertex& v : quad.vertices) v.uv.y = 1.0f - v.uv.y;
+  scene::add_instance(built, quad);
+  scene::update_bounds(built);
+  render::FrameSettings settings = small_settings();
+  settings.ao = false;
+  scene::Framing head_on;
+  head_on.azimuth_deg = 0.0;
+  head_on.elevation_deg = 0.0;
+  head_on.distance = 0.5;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+  const auto color = h.renderer.read_color();  // row 0 at the top
+  auto at = [&](int x, int y) { return glm::ivec3(color[static_cast<size_t>((y * kSide + x) * 4)],
+                                                  color[static_cast<size_t>((y * kSide + x) * 4 + 1)],
+                                                  color[static_cast<size_t>((y * kSide + x) * 4 + 2)]); };
+  const glm::ivec3 top_left = at(16, 16), top_right = at(48, 16), bottom_left = at(16, 48), bottom_right = at(48, 48);
+  EXPECT_GT(top_left.r, 100);
+  EXPECT_LT(top_left.g + top_left.b, 10);
+  EXPECT_GT(top_right.g, 100);
+  EXPECT_LT(top_right.r + top_right.b, 10);
+  EXPECT_GT(bottom_left.b, 100);
+  EXPECT_LT(bottom_left.r + bottom_left.g, 10);
+  EXPECT_GT(std::min({bottom_right.r, bottom_right.g, bottom_right.b}), 100);
+  EXPECT_EQ(h.renderer.gl_error(), "");
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, Pipeline, ::testing::Values("egl", "osmesa"), test::platform_name);

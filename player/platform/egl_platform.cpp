@@ -41,10 +41,12 @@ class EglPlatform final : public Platform {
  public:
   EglPlatform(EGLDisplay display, EGLContext context, std::string how, std::vector<std::string> used)
       : display_(display), context_(context), how_(std::move(how)), used_(std::move(used)) {}
+  // The display is not terminated: an EGLDisplay is one per device and process, shared by every
+  // Platform made on it, so terminating it here would pull it from under another. (Mesa also unloads
+  // its driver on eglTerminate, which leaves LeakSanitizer unable to name the driver's allocations.)
   ~EglPlatform() override {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, context_);
-    eglTerminate(display_);
   }
   std::string_view name() const override { return "egl"; }
   std::string description() const override { return how_; }
@@ -67,12 +69,10 @@ EGLContext make_context(EGLDisplay display, bool debug, std::string& why) {
   const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
   if (!has_extension(extensions, "EGL_KHR_surfaceless_context")) {
     why = "the display lacks EGL_KHR_surfaceless_context";
-    eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
   if (!eglBindAPI(EGL_OPENGL_ES_API)) {
     why = "eglBindAPI(EGL_OPENGL_ES_API) failed";
-    eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
   EGLConfig config = EGL_NO_CONFIG_KHR;
@@ -81,7 +81,6 @@ EGLContext make_context(EGLDisplay display, bool debug, std::string& why) {
     EGLint count = 0;
     if (!eglChooseConfig(display, wanted, &config, 1, &count) || count < 1) {
       why = "no EGL config renders OpenGL ES 3";
-      eglTerminate(display);
       return EGL_NO_CONTEXT;
     }
   }
@@ -91,13 +90,11 @@ EGLContext make_context(EGLDisplay display, bool debug, std::string& why) {
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
   if (context == EGL_NO_CONTEXT) {
     why = "eglCreateContext for OpenGL ES 3.1 failed (" + egl_error_name(eglGetError()) + ")";
-    eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     why = "eglMakeCurrent without a surface failed (" + egl_error_name(eglGetError()) + ")";
     eglDestroyContext(display, context);
-    eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
   return context;

@@ -3,8 +3,7 @@
 #include "app/image_io.h"
 #include "gl/caps.h"
 #include "platform/platform.h"
-#include "scene/gltf_loader.h"
-#include "scene/procedural.h"
+#include "scene/load.h"
 
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
@@ -19,8 +18,6 @@
 
 namespace app {
 namespace {
-
-constexpr std::string_view kBuiltinPrefix = "builtin:";
 
 nlohmann::json matrix_json(const glm::dmat4& m) {
   nlohmann::json columns = nlohmann::json::array();
@@ -128,32 +125,11 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
 }  // namespace
 
-bool load_scene(const std::string& spec, scene::Scene& out, std::string& error, std::ostream& log) {
-  if (spec.rfind(kBuiltinPrefix, 0) == 0) {
-    const std::string name = spec.substr(kBuiltinPrefix.size());
-    if (auto built = scene::make_builtin(name)) {
-      out = std::move(*built);
-      return true;
-    }
-    error = spec + ": no such built-in scene (expected one of:";
-    for (const std::string& known : scene::builtin_names()) error += " builtin:" + known;
-    error += ")";
-    return false;
-  }
-  scene::LoadReport report;
-  if (!scene::load_gltf(spec, out, report)) {
-    error = report.error;
-    return false;
-  }
-  for (const std::string& warning : report.warnings) log << "warning: " << spec << ": " << warning << "\n";
-  return true;
-}
-
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   const auto load_start = std::chrono::steady_clock::now();
   scene::Scene scene;
   std::string error;
-  if (!load_scene(options.scene, scene, error, err)) {
+  if (!scene::load(options.scene, scene, error, err)) {
     err << "error: " << error << "\n";
     return 1;
   }

@@ -19,9 +19,6 @@ struct RenderOptions {
   render::FrameSettings frame;
 };
 
-// Loads "builtin:NAME" or a glTF file. Returns false and says why (file, field, expectation).
-bool load_scene(const std::string& spec, scene::Scene& out, std::string& error, std::ostream& log);
-
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);
 

@@ -1,6 +1,6 @@
 #pragma once
 // A context, a renderer and a framed scene, for GL tests on either platform.
-#include "app/render_command.h"
+#include "scene/load.h"
 #include "gl/caps.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
@@ -27,7 +27,7 @@ struct Harness {
     if (!platform) return ::testing::AssertionFailure() << error;
     caps = gl::query_caps();
     std::ostringstream log;
-    if (!app::load_scene(scene_spec, scene, error, log)) return ::testing::AssertionFailure() << error;
+    if (!scene::load(scene_spec, scene, error, log)) return ::testing::AssertionFailure() << error;
     return render_first_frame(settings, framing);
   }
 

@@ -1,0 +1,34 @@
+#include "scene/load.h"
+
+#include "scene/gltf_loader.h"
+#include "scene/procedural.h"
+
+#include <ostream>
+
+namespace scene {
+namespace {
+constexpr std::string_view kBuiltinPrefix = "builtin:";
+}  // namespace
+
+bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log) {
+  if (spec.rfind(kBuiltinPrefix, 0) == 0) {
+    const std::string name = spec.substr(kBuiltinPrefix.size());
+    if (auto built = make_builtin(name)) {
+      out = std::move(*built);
+      return true;
+    }
+    error = spec + ": no such built-in scene (expected one of:";
+    for (const std::string& known : builtin_names()) error += " builtin:" + known;
+    error += ")";
+    return false;
+  }
+  LoadReport report;
+  if (!load_gltf(spec, out, report)) {
+    error = report.error;
+    return false;
+  }
+  for (const std::string& warning : report.warnings) log << "warning: " << spec << ": " << warning << "\n";
+  return true;
+}
+
+}  // namespace scene

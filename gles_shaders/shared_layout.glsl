@@ -15,6 +15,7 @@
 #define BINDING_SSAO_PARAMS 0
 #define BINDING_BLUR_PARAMS 1
 #define BINDING_COMPOSITE_PARAMS 2
+#define BINDING_UPSAMPLE_PARAMS 3
 
 // Debug views of the composite pass.
 #define VIEW_COLOR 0
@@ -22,13 +23,25 @@
 #define VIEW_NORMAL 2
 #define VIEW_DEPTH 3
 
+// Estimators (ESTIMATOR define of ssao.comp).
+#define ESTIMATOR_SPHERE 0
+#define ESTIMATOR_HEMISPHERE 1
+#define ESTIMATOR_HORIZON 2
+
+#define DEPTH_CHAIN_MAX_LEVELS 8
+
 struct SsaoParams {
   mat4 projection;         // view space -> clip space
   vec4 unproject;          // (1/P00, 1/P11, P20, P21): rebuilds view position from linear depth
   vec4 radii_0_3;          // world-space radius of each resolution, largest first
-  vec4 radius_4_bias;      // x: fifth radius; y: depth bias as a fraction of the radius
-  ivec4 counts;            // x: samples per radius, y: radii, z: width, w: height
-  vec4 kernel[SSAO_MAX_SAMPLES];                             // xyz: unit-ball offset, w: unused
+  vec4 radius_4_bias;      // x: fifth radius; y: depth bias as a fraction of the radius;
+                           // z: pixels per view-space unit at depth 1 (P11 * full height / 2);
+                           // w: the AO of the radii skipped as sub-pixel (their known value)
+  ivec4 counts;            // x: samples per radius, y: radii configured, z: AO width, w: AO height
+  ivec4 lods_0_3;          // depth-chain level each radius reads (large radii read coarse levels)
+  ivec4 config;            // x: level of radius 4, y: AO resolution shift (0 full, 1 half), z: full width, w: full height
+  ivec4 radius_range;            // x: first radius used this frame, y: one past the last (radii skipped per frame)
+  vec4 kernel[SSAO_MAX_SAMPLES];                             // see ssao::make_kernel
   vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn
 };
 
@@ -36,6 +49,11 @@ struct BlurParams {
   vec4 weights[BLUR_MAX_RADIUS + 1];  // x: Gaussian weight at distance i
   ivec4 config;                       // x: radius, y: direction (0 horizontal, 1 vertical), z: width, w: height
   vec4 bilateral;                     // x: depth tolerance relative to the centre depth
+};
+
+struct UpsampleParams {
+  ivec4 config;           // x: full width, y: full height, z: AO width, w: AO height
+  vec4 depth;             // x: 1 / far (the AO texture's g channel is depth / far)
 };
 
 struct CompositeParams {

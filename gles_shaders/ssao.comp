@@ -1,58 +1,145 @@
-// SSAO, Algorithm 1 of Doronin et al. (Mittring's CryEngine 2 method) in view space: rebuild the
-// pixel's position from linear depth, place samples from the fixed kernel around it (turned by the
-// pixel's entry of the rotation tile), project each, and count the samples hidden behind the stored
-// surface within the range check. Each radius gives its own fraction; the radii merge by max
-// (Hoang & Low). Output: r = AO in [0,1], g = linear depth / far for the depth-aware blur.
+// SSAO with three estimators over one set of tables (ESTIMATOR selects at compile time):
+//  ESTIMATOR_SPHERE:     Algorithm 1 of Doronin et al. (Mittring's CryEngine 2 method): samples in a
+//                        sphere around the point, counted when hidden behind the stored surface.
+//  ESTIMATOR_HEMISPHERE: the same test on cosine-weighted samples in the hemisphere about the normal.
+//  ESTIMATOR_HORIZON:    horizon search per screen-space slice with the cosine-weighted arc integral
+//                        of GTAO (Jimenez et al. 2016).
+// Every radius gives its own AO; the radii merge by max (Hoang & Low). Large radii read coarser
+// levels of the depth chain. Output: r = AO in [0,1], g = linear depth / far for the blur and upsample.
 #include "common.glsl"
 #include "shared_layout.glsl"
+
+#ifndef ESTIMATOR
+#define ESTIMATOR ESTIMATOR_SPHERE
+#endif
 
 layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
 
 layout(std140, binding = BINDING_SSAO_PARAMS) uniform SsaoBlock { SsaoParams ssao; };
-uniform highp sampler2D u_linear_depth;
+uniform highp sampler2D u_linear_depth;  // level 0 full resolution, then the depth chain
+uniform highp sampler2D u_normal;        // view-space normals
 uniform highp float u_inverse_far;
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_ao;
 
-float radius_at(int k) {
-  return k < 4 ? ssao.radii_0_3[k] : ssao.radius_4_bias.x;
+const highp float kPi = 3.14159265358979;
+
+highp float radius_at(int k) { return k < 4 ? ssao.radii_0_3[k] : ssao.radius_4_bias.x; }
+int level_at(int k) { return k < 4 ? ssao.lods_0_3[k] : ssao.config.x; }
+
+highp float depth_at(ivec2 texel, int level) {
+  // Odd sizes round down level by level, so the last row or column maps past the coarse level's end.
+  return texelFetch(u_linear_depth, min(texel >> level, textureSize(u_linear_depth, level) - 1), level).r;
 }
 
+highp vec3 view_position(ivec2 texel, highp float depth) {
+  highp vec2 ndc = (vec2(texel) + 0.5) / vec2(ssao.config.zw) * 2.0 - 1.0;
+  return vec3((ndc + ssao.unproject.zw) * depth * ssao.unproject.xy, -depth);
+}
+
+#if ESTIMATOR != ESTIMATOR_HORIZON
+// The share of kernel points, placed by `basis` at `radius`, that the stored surface hides. A point
+// counts when the surface is in front of it by more than the bias, and that surface lies within the
+// radius of the shaded point in depth: farther occluders are other geometry (no halos).
+highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basis, highp float radius, int level) {
+  highp float bias = ssao.radius_4_bias.y * radius;
+  int hidden = 0;
+  for (int i = 0; i < ssao.counts.x; ++i) {
+    highp vec3 sample_position = position + radius * (basis * ssao.kernel[i].xyz);
+    highp vec4 clip = ssao.projection * vec4(sample_position, 1.0);
+    if (clip.w <= 0.0) continue;  // behind the eye: nothing on screen can hide it
+    ivec2 texel = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(ssao.config.zw)));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+    highp float surface = depth_at(texel, level);
+    highp float sample_depth = -sample_position.z;
+    if (surface > 0.0 && surface < sample_depth - bias && abs(depth - surface) < radius) ++hidden;
+  }
+  return float(hidden) / float(ssao.counts.x);
+}
+#else
+// GTAO for one radius: per slice, the highest horizon on each side within the radius, then the
+// visible arc integrated with the cosine to the normal projected into the slice.
+highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp float depth,
+                              highp float turn_angle, highp float radius, int level) {
+  highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
+  if (radius_pixels < 1.0) return 0.0;  // the radius falls inside this pixel: nothing to find
+  int slices = max(1, ssao.counts.x / 8);
+  int steps = max(1, ssao.counts.x / (2 * slices));
+  highp vec3 view = normalize(-position);
+  highp float visibility = 0.0;
+  for (int slice = 0; slice < slices; ++slice) {
+    highp vec2 jitter = ssao.kernel[slice].xy;
+    highp float phi = kPi * (float(slice) + jitter.x) / float(slices) + turn_angle;
+    highp vec2 direction = vec2(cos(phi), sin(phi));
+    highp vec3 direction_view = vec3(direction, 0.0);
+    highp vec3 ortho = direction_view - dot(direction_view, view) * view;
+    highp vec3 axis = normalize(cross(ortho, view));
+    highp vec3 projected_normal = normal - axis * dot(normal, axis);
+    highp float projected_length = length(projected_normal);
+    if (projected_length < 1e-6) continue;  // the normal is the slice's axis: no arc to integrate
+    highp float cos_normal = clamp(dot(projected_normal, view) / projected_length, -1.0, 1.0);
+    highp float gamma = sign(dot(ortho, projected_normal)) * acos(cos_normal);
+    highp float horizon_plus = cos(gamma + 0.5 * kPi), horizon_minus = cos(gamma - 0.5 * kPi);
+    for (int step_index = 0; step_index < steps; ++step_index) {
+      highp float distance_pixels = max((float(step_index) + jitter.y) / float(steps) * radius_pixels, float(step_index + 1));
+      for (int side = 0; side < 2; ++side) {
+        highp vec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction;
+        ivec2 texel = pixel + ivec2(floor(offset + 0.5));
+        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+        highp float sample_depth = depth_at(texel, level);
+        if (sample_depth <= 0.0) continue;
+        highp vec3 delta = view_position(texel, sample_depth) - position;
+        highp float distance = length(delta);
+        if (distance >= radius || distance <= 0.0) continue;
+        highp float horizon = dot(delta, view) / distance;
+        if (side == 0) horizon_plus = max(horizon_plus, horizon);
+        else horizon_minus = max(horizon_minus, horizon);
+      }
+    }
+    highp float h0 = -acos(clamp(horizon_minus, -1.0, 1.0));
+    highp float h1 = acos(clamp(horizon_plus, -1.0, 1.0));
+    h0 = gamma + max(h0 - gamma, -0.5 * kPi);
+    h1 = gamma + min(h1 - gamma, 0.5 * kPi);
+    highp float arc0 = (cos_normal + 2.0 * h0 * sin(gamma) - cos(2.0 * h0 - gamma)) * 0.25;
+    highp float arc1 = (cos_normal + 2.0 * h1 * sin(gamma) - cos(2.0 * h1 - gamma)) * 0.25;
+    visibility += projected_length * (arc0 + arc1);
+  }
+  return clamp(1.0 - visibility / float(slices), 0.0, 1.0);
+}
+#endif
+
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = ssao.counts.zw;
-  if (pixel.x >= size.x || pixel.y >= size.y) return;
+  ivec2 ao_pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (ao_pixel.x >= ssao.counts.z || ao_pixel.y >= ssao.counts.w) return;
+  // At reduced resolution each AO pixel shades the first full-resolution pixel of its block.
+  ivec2 pixel = ao_pixel << ssao.config.y;
   highp float depth = texelFetch(u_linear_depth, pixel, 0).r;
   if (depth <= 0.0) {  // background: nothing to occlude
-    imageStore(u_ao, pixel, vec4(0.0));
+    imageStore(u_ao, ao_pixel, vec4(0.0));
     return;
   }
-  highp vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;
-  highp vec3 position = vec3((ndc + ssao.unproject.zw) * depth * ssao.unproject.xy, -depth);
-  vec2 turn = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy;
-
-  float ao = 0.0;
-  for (int k = 0; k < ssao.counts.y; ++k) {
-    highp float radius = radius_at(k);
-    highp float bias = ssao.radius_4_bias.y * radius;
-    int hidden = 0;
-    for (int i = 0; i < ssao.counts.x; ++i) {
-      vec3 o = ssao.kernel[i].xyz;
-      highp vec3 offset = vec3(turn.x * o.x - turn.y * o.y, turn.y * o.x + turn.x * o.y, o.z);
-      highp vec3 sample_position = position + radius * offset;
-      highp vec4 clip = ssao.projection * vec4(sample_position, 1.0);
-      if (clip.w <= 0.0) continue;  // behind the eye: nothing on screen can hide it
-      highp vec2 uv = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size);
-      ivec2 texel = ivec2(floor(uv));
-      if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) continue;
-      highp float surface = texelFetch(u_linear_depth, texel, 0).r;
-      highp float sample_depth = -sample_position.z;
-      // Hidden if the stored surface is in front of the sample. The range check compares that
-      // surface with the shaded point, not with the sample: an occluder more than a radius away in
-      // depth is other geometry (no dark halos round silhouettes), while on a floor seen at a
-      // grazing angle the surface in front of a sample is still near the point and counts.
-      if (surface > 0.0 && surface < sample_depth - bias && abs(depth - surface) < radius) ++hidden;
-    }
-    ao = max(ao, float(hidden) / float(ssao.counts.x));
+  highp vec3 position = view_position(pixel, depth);
+  highp vec2 turn = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy;
+#if ESTIMATOR == ESTIMATOR_SPHERE
+  highp mat3 basis = mat3(turn.x, turn.y, 0.0, -turn.y, turn.x, 0.0, 0.0, 0.0, 1.0);
+#elif ESTIMATOR == ESTIMATOR_HEMISPHERE
+  highp vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+  highp vec3 reference = vec3(turn, 0.0);
+  highp vec3 tangent = reference - normal * dot(reference, normal);
+  // The turn lies in the image plane; a normal in that plane along the turn needs another tangent.
+  if (dot(tangent, tangent) < 1e-6) tangent = vec3(-turn.y, turn.x, 0.0) - normal * dot(vec3(-turn.y, turn.x, 0.0), normal);
+  tangent = normalize(tangent);
+  highp mat3 basis = mat3(tangent, cross(normal, tangent), normal);
+#else
+  highp vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+  highp float turn_angle = atan(turn.y, turn.x);
+#endif
+  float ao = ssao.radius_4_bias.w;
+  for (int k = ssao.radius_range.x; k < ssao.radius_range.y; ++k) {
+#if ESTIMATOR == ESTIMATOR_HORIZON
+    ao = max(ao, horizon_occlusion(pixel, position, normal, depth, turn_angle, radius_at(k), level_at(k)));
+#else
+    ao = max(ao, hidden_share(position, depth, basis, radius_at(k), level_at(k)));
+#endif
   }
-  imageStore(u_ao, pixel, vec4(ao, depth * u_inverse_far, 0.0, 0.0));
+  imageStore(u_ao, ao_pixel, vec4(ao, depth * u_inverse_far, 0.0, 0.0));
 }

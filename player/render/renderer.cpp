@@ -13,12 +13,13 @@ namespace {
 
 GLuint groups(int size, int group) { return static_cast<GLuint>((size + group - 1) / group); }
 
-gl::Texture make_target(GLenum format, int width, int height) {
+gl::Texture make_target(GLenum format, int width, int height, int levels = 1) {
   gl::Texture texture = gl::make_texture();
   gl::api.BindTexture(GL_TEXTURE_2D, texture.id());
-  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
-  // Every pass reads its inputs with texelFetch; nearest keeps the textures complete.
-  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api.TexStorage2D(GL_TEXTURE_2D, levels, format, width, height);
+  // Every pass reads its inputs with texelFetch; a nearest filter (mipmapped where there are levels,
+  // so texelFetch may address them) keeps the textures complete.
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -60,9 +61,11 @@ std::string_view pass_name(int pass) {
   switch (pass) {
     case kDepthPrepass: return "depth prepass";
     case kGBuffer: return "g-buffer";
+    case kDepthChain: return "depth chain";
     case kSsao: return "ssao";
     case kBlurH: return "blur horizontal";
     case kBlurV: return "blur vertical";
+    case kUpsample: return "upsample";
     case kComposite: return "composite";
     default: return "?";
   }
@@ -85,16 +88,19 @@ bool Renderer::init(const gl::Caps& caps, std::string& error) {
   if (!build_gbuffer_program(gbuffer_plain_, "gbuffer.frag", "", error)) return false;
   if (!build_gbuffer_program(gbuffer_textured_, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error)) return false;
   if (!build_gbuffer_program(depth_only_, "depth_only.frag", "", error)) return false;
-  ssao_ = gl::build_program({{GL_COMPUTE_SHADER, "ssao.comp"}}, "", error);
-  if (!ssao_) return false;
-  ssao_inverse_far_ = gl::uniform(ssao_, "u_inverse_far");
+  depth_chain_ = gl::build_program({{GL_COMPUTE_SHADER, "depth_chain.comp"}}, "", error);
+  if (!depth_chain_) return false;
+  depth_chain_source_level_ = gl::uniform(depth_chain_, "u_source_level");
+  upsample_ = gl::build_program({{GL_COMPUTE_SHADER, "upsample.comp"}}, "", error);
+  if (!upsample_) return false;
   blur_gaussian_ = gl::build_program({{GL_COMPUTE_SHADER, "blur.comp"}}, "", error);
   if (!blur_gaussian_) return false;
   blur_bilateral_ = gl::build_program({{GL_COMPUTE_SHADER, "blur.comp"}}, "#define BILATERAL 1\n", error);
   if (!blur_bilateral_) return false;
   composite_ = gl::build_program({{GL_COMPUTE_SHADER, "composite.comp"}}, "", error);
   if (!composite_) return false;
-  assign_units(ssao_, {"u_linear_depth"});
+  assign_units(depth_chain_, {"u_linear_depth"});
+  assign_units(upsample_, {"u_ao", "u_linear_depth"});
   assign_units(blur_gaussian_, {"u_source"});
   assign_units(blur_bilateral_, {"u_source"});
   assign_units(composite_, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"});
@@ -157,6 +163,7 @@ bool Renderer::upload(const scene::Scene& scene, std::string& error) {
            (materials_[static_cast<size_t>(b.material)].base_color_texture >= 0);
   });
   scene_radius_ = scene.bounds.radius();
+  scene_centre_ = scene.bounds.centre();
   const GLenum status = gl::api.GetError();
   if (status != GL_NO_ERROR) {
     error = "uploading the scene raised GL error 0x" + std::to_string(status);
@@ -174,14 +181,27 @@ bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   }
   settings_ = settings;
   gl_error_.clear();
+  have_ao_ = reused_ao_ = false;
   const int w = settings.width, h = settings.height;
+  std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(settings.ao_settings.estimator)) + "\n";
+  ssao_ = gl::build_program({{GL_COMPUTE_SHADER, "ssao.comp"}}, defines, error);
+  if (!ssao_) return false;
+  ssao_inverse_far_ = gl::uniform(ssao_, "u_inverse_far");
+  assign_units(ssao_, {"u_linear_depth", "u_normal"});
+  gl::api.UseProgram(0);
+
+  base_radius_ = settings.radius > 0.0f ? settings.radius : static_cast<float>(0.1 * scene_radius_);
+  ssao_params_ = ssao::make_ssao_params(settings.ao_settings, base_radius_, w, h);
+  const int ao_w = ssao_params_.counts.z, ao_h = ssao_params_.counts.w;
+  depth_levels_ = ssao::depth_chain_levels(w, h);
   albedo_ = make_target(GL_RGBA8, w, h);
   normal_ = make_target(GL_RGBA16F, w, h);
-  linear_depth_ = make_target(GL_R32F, w, h);
+  linear_depth_ = make_target(GL_R32F, w, h, depth_levels_);
   depth_ = make_target(GL_DEPTH_COMPONENT32F, w, h);
-  ao_raw_ = make_target(GL_RGBA16F, w, h);
-  ao_temp_ = make_target(GL_RGBA16F, w, h);
-  ao_blurred_ = make_target(GL_RGBA16F, w, h);
+  ao_raw_ = make_target(GL_RGBA16F, ao_w, ao_h);
+  ao_temp_ = make_target(GL_RGBA16F, ao_w, ao_h);
+  ao_blurred_ = make_target(GL_RGBA16F, ao_w, ao_h);
+  ao_full_ = settings.ao_settings.half_resolution ? make_target(GL_RGBA16F, w, h) : gl::Texture();
   output_ = make_target(GL_RGBA8, w, h);
 
   gbuffer_fbo_ = gl::make_framebuffer();
@@ -200,14 +220,14 @@ bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   }
   read_fbo_ = gl::make_framebuffer();
 
-  base_radius_ = settings.radius > 0.0f ? settings.radius : static_cast<float>(0.1 * scene_radius_);
-  // The projection changes with the camera; render() refreshes it. The rest is fixed here.
-  ssao_params_ = ssao::make_ssao_params(settings.ao_settings, base_radius_, glm::mat4(1.0f), w, h);
+  // The projection and the radii in use change with the camera; render() refreshes them.
   ssao_ubo_ = make_uniform_buffer(&ssao_params_, sizeof ssao_params_);
   for (int direction = 0; direction < 2; ++direction) {
-    blur_params_[direction] = ssao::make_blur_params(settings.blur, direction, w, h);
+    blur_params_[direction] = ssao::make_blur_params(settings.blur, direction, ao_w, ao_h);
     blur_ubo_[direction] = make_uniform_buffer(&blur_params_[direction], sizeof blur_params_[direction]);
   }
+  upsample_params_.config = glm::ivec4(w, h, ao_w, ao_h);
+  upsample_ubo_ = make_uniform_buffer(&upsample_params_, sizeof upsample_params_);
   shared_layout::CompositeParams composite{};
   composite_ubo_ = make_uniform_buffer(&composite, sizeof composite);
   const GLenum gl_status = gl::api.GetError();
@@ -301,22 +321,49 @@ void Renderer::render(const scene::Camera& camera) {
   check(kGBuffer);
   timer_.mark(kGBuffer);
 
-  const gl::Texture* ao_result = &ao_raw_;
-  if (settings_.ao) {
-    ssao_params_.projection = projection;
-    ssao_params_.unproject = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
+  const bool half = settings_.ao_settings.half_resolution;
+  const gl::Texture* ao_result = half ? &ao_full_ : settings_.blur.mode != ssao::Blur::off ? &ao_blurred_ : &ao_raw_;
+  const glm::dmat4 projection_d = camera.projection();
+  // A still camera over a static scene sees the same AO: keep it rather than compute it again.
+  reused_ao_ = settings_.ao && settings_.reuse_static_ao && have_ao_ && view == last_view_ && projection_d == last_projection_;
+  if (settings_.ao && !reused_ao_) {
+    const int ao_w = ssao_params_.counts.z, ao_h = ssao_params_.counts.w;
+    ssao::FrameView frame_view;
+    frame_view.projection = projection;
+    const double centre_distance = glm::length(camera.eye - scene_centre_);
+    frame_view.centre_depth = static_cast<float>(std::max(centre_distance, camera.near));
+    frame_view.nearest_depth = static_cast<float>(std::max(centre_distance - scene_radius_, camera.near));
+    frame_view.scene_radius = static_cast<float>(scene_radius_);
+    ssao::update_for_frame(ssao_params_, settings_.ao_settings, frame_view);
+
+    if (settings_.ao_settings.depth_chain) {
+      gl::api.UseProgram(depth_chain_.id());
+      bind_texture(0, linear_depth_);
+      for (int level = 1; level < depth_levels_; ++level) {
+        gl::api.Uniform1i(depth_chain_source_level_, level - 1);
+        gl::api.BindImageTexture(0, linear_depth_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        gl::api.DispatchCompute(groups(std::max(w >> level, 1), SSAO_GROUP_SIZE),
+                                groups(std::max(h >> level, 1), SSAO_GROUP_SIZE), 1);
+        gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+      }
+      check(kDepthChain);
+      timer_.mark(kDepthChain);
+    }
+
     gl::api.BindBuffer(GL_UNIFORM_BUFFER, ssao_ubo_.id());
     gl::api.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof ssao_params_, &ssao_params_);
     gl::api.UseProgram(ssao_.id());
     gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_SSAO_PARAMS, ssao_ubo_.id());
     gl::api.Uniform1f(ssao_inverse_far_, inverse_far_);
     bind_texture(0, linear_depth_);
+    bind_texture(1, normal_);
     gl::api.BindImageTexture(0, ao_raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl::api.DispatchCompute(groups(w, SSAO_GROUP_SIZE), groups(h, SSAO_GROUP_SIZE), 1);
+    gl::api.DispatchCompute(groups(ao_w, SSAO_GROUP_SIZE), groups(ao_h, SSAO_GROUP_SIZE), 1);
     gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     check(kSsao);
     timer_.mark(kSsao);
 
+    const gl::Texture* ao_low = &ao_raw_;
     if (settings_.blur.mode != ssao::Blur::off) {
       const gl::Program& blur = settings_.blur.mode == ssao::Blur::bilateral ? blur_bilateral_ : blur_gaussian_;
       gl::api.UseProgram(blur.id());
@@ -327,14 +374,32 @@ void Renderer::render(const scene::Camera& camera) {
         bind_texture(0, *sources[direction]);
         gl::api.BindImageTexture(0, targets[direction]->id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         // Threads run along the blur direction: x for the horizontal pass, y for the vertical.
-        if (direction == 0) gl::api.DispatchCompute(groups(w, BLUR_GROUP_SIZE), static_cast<GLuint>(h), 1);
-        else gl::api.DispatchCompute(groups(h, BLUR_GROUP_SIZE), static_cast<GLuint>(w), 1);
+        if (direction == 0) gl::api.DispatchCompute(groups(ao_w, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_h), 1);
+        else gl::api.DispatchCompute(groups(ao_h, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_w), 1);
         gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         check(direction == 0 ? kBlurH : kBlurV);
         timer_.mark(direction == 0 ? kBlurH : kBlurV);
       }
-      ao_result = &ao_blurred_;
+      ao_low = &ao_blurred_;
     }
+
+    if (half) {
+      upsample_params_.depth = glm::vec4(inverse_far_, 0.0f, 0.0f, 0.0f);
+      gl::api.BindBuffer(GL_UNIFORM_BUFFER, upsample_ubo_.id());
+      gl::api.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof upsample_params_, &upsample_params_);
+      gl::api.UseProgram(upsample_.id());
+      gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_UPSAMPLE_PARAMS, upsample_ubo_.id());
+      bind_texture(0, *ao_low);
+      bind_texture(1, linear_depth_);
+      gl::api.BindImageTexture(0, ao_full_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+      gl::api.DispatchCompute(groups(w, SSAO_GROUP_SIZE), groups(h, SSAO_GROUP_SIZE), 1);
+      gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+      check(kUpsample);
+      timer_.mark(kUpsample);
+    }
+    last_view_ = view;
+    last_projection_ = projection_d;
+    have_ao_ = true;
   }
 
   shared_layout::CompositeParams composite{};
@@ -365,8 +430,7 @@ PassTimes Renderer::collect_times() {
   return times;
 }
 
-std::vector<float> Renderer::read_rgba_float(const gl::Texture& texture) const {
-  const int w = settings_.width, h = settings_.height;
+std::vector<float> Renderer::read_rgba_float(const gl::Texture& texture, int w, int h) const {
   std::vector<float> pixels(static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
   gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_.id());
   gl::api.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.id(), 0);
@@ -395,30 +459,35 @@ std::vector<uint8_t> Renderer::read_color() const {
 }
 
 std::vector<float> Renderer::read_linear_depth() const {
-  const std::vector<float> rgba = read_rgba_float(linear_depth_);
+  const std::vector<float> rgba = read_rgba_float(linear_depth_, settings_.width, settings_.height);
   std::vector<float> depth(rgba.size() / 4);
   for (size_t i = 0; i < depth.size(); ++i) depth[i] = rgba[i * 4];
   return depth;
 }
 
 std::vector<glm::vec3> Renderer::read_view_normals() const {
-  const std::vector<float> rgba = read_rgba_float(normal_);
+  const std::vector<float> rgba = read_rgba_float(normal_, settings_.width, settings_.height);
   std::vector<glm::vec3> normals(rgba.size() / 4);
   for (size_t i = 0; i < normals.size(); ++i) normals[i] = glm::vec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]);
   return normals;
 }
 
-std::vector<glm::vec2> Renderer::read_ao(const gl::Texture& texture) const {
-  const std::vector<float> rgba = read_rgba_float(texture);
+std::vector<glm::vec2> Renderer::read_ao(const gl::Texture& texture, int w, int h) const {
+  const std::vector<float> rgba = read_rgba_float(texture, w, h);
   std::vector<glm::vec2> ao(rgba.size() / 4);
   for (size_t i = 0; i < ao.size(); ++i) ao[i] = glm::vec2(rgba[i * 4], rgba[i * 4 + 1]);
   return ao;
 }
 
-std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(ao_raw_); }
+std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(ao_raw_, ssao_params_.counts.z, ssao_params_.counts.w); }
 
 std::vector<glm::vec2> Renderer::read_ao_blurred() const {
-  return read_ao(settings_.blur.mode == ssao::Blur::off ? ao_raw_ : ao_blurred_);
+  return read_ao(settings_.blur.mode == ssao::Blur::off ? ao_raw_ : ao_blurred_, ssao_params_.counts.z, ssao_params_.counts.w);
+}
+
+std::vector<glm::vec2> Renderer::read_ao_final() const {
+  if (settings_.ao_settings.half_resolution) return read_ao(ao_full_, settings_.width, settings_.height);
+  return read_ao_blurred();
 }
 
 }  // namespace render

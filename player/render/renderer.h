@@ -26,10 +26,11 @@ struct FrameSettings {
   float radius = 0.0f;        // base AO radius in world units; 0: a tenth of the scene's bounding radius
   View view = View::color;
   bool depth_prepass = true;
-  bool check_errors = false;  // glGetError after each pass (tests, debug runs)
+  bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
+  bool check_errors = false;    // glGetError after each pass (tests, debug runs)
 };
 
-enum Pass { kDepthPrepass, kGBuffer, kSsao, kBlurH, kBlurV, kComposite, kPassCount };
+enum Pass { kDepthPrepass, kGBuffer, kDepthChain, kSsao, kBlurH, kBlurV, kUpsample, kComposite, kPassCount };
 std::string_view pass_name(int pass);
 
 struct PassTimes {
@@ -61,11 +62,14 @@ class Renderer {
   std::vector<uint8_t> read_color() const;  // RGBA8, row 0 at the top
   std::vector<float> read_linear_depth() const;
   std::vector<glm::vec3> read_view_normals() const;
-  std::vector<glm::vec2> read_ao_raw() const;
-  std::vector<glm::vec2> read_ao_blurred() const;
+  std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
+  std::vector<glm::vec2> read_ao_blurred() const;  // ditto; equal to read_ao_raw() with blur off
+  std::vector<glm::vec2> read_ao_final() const;    // full resolution: what the composite used
 
   const shared_layout::SsaoParams& ssao_params() const { return ssao_params_; }
   const shared_layout::BlurParams& blur_params(int direction) const { return blur_params_[direction]; }
+  const shared_layout::UpsampleParams& upsample_params() const { return upsample_params_; }
+  bool reused_ao() const { return reused_ao_; }  // the last frame kept the AO of the one before
   float base_radius() const { return base_radius_; }
   float inverse_far() const { return inverse_far_; }
   const FrameSettings& settings() const { return settings_; }
@@ -89,8 +93,8 @@ class Renderer {
   bool build_gbuffer_program(GBufferProgram& out, const std::string& fragment, const std::string& defines, std::string& error);
   void draw_scene(bool depth_only, const glm::dmat4& view, const glm::mat4& projection);
   void check(int pass);
-  std::vector<float> read_rgba_float(const gl::Texture& texture) const;
-  std::vector<glm::vec2> read_ao(const gl::Texture& texture) const;
+  std::vector<glm::vec2> read_ao(const gl::Texture& texture, int width, int height) const;
+  std::vector<float> read_rgba_float(const gl::Texture& texture, int width, int height) const;
 
   gl::Caps caps_;
   FrameSettings settings_;
@@ -98,21 +102,26 @@ class Renderer {
   std::string gl_error_;
 
   GBufferProgram gbuffer_plain_, gbuffer_textured_, depth_only_;
-  gl::Program ssao_, blur_gaussian_, blur_bilateral_, composite_;
-  GLint ssao_inverse_far_ = -1;
+  gl::Program ssao_, depth_chain_, blur_gaussian_, blur_bilateral_, upsample_, composite_;
+  GLint ssao_inverse_far_ = -1, depth_chain_source_level_ = -1;
+  int depth_levels_ = 1;
 
   std::vector<GpuMesh> meshes_;
   std::vector<gl::Texture> textures_;
   std::vector<scene::Material> materials_;
   std::vector<Draw> draws_;  // sorted so untextured and textured draws each form one run
   double scene_radius_ = 1.0;
+  glm::dvec3 scene_centre_{0.0};
 
-  gl::Texture albedo_, normal_, linear_depth_, depth_, ao_raw_, ao_temp_, ao_blurred_, output_;
+  gl::Texture albedo_, normal_, linear_depth_, depth_, ao_raw_, ao_temp_, ao_blurred_, ao_full_, output_;
   gl::Framebuffer gbuffer_fbo_, read_fbo_;
-  gl::Buffer ssao_ubo_, blur_ubo_[2], composite_ubo_;
+  gl::Buffer ssao_ubo_, blur_ubo_[2], upsample_ubo_, composite_ubo_;
   shared_layout::SsaoParams ssao_params_{};
   shared_layout::BlurParams blur_params_[2]{};
+  shared_layout::UpsampleParams upsample_params_{};
   float base_radius_ = 0.0f, inverse_far_ = 0.0f;
+  glm::dmat4 last_view_{0.0}, last_projection_{0.0};
+  bool have_ao_ = false, reused_ao_ = false;
 };
 
 }  // namespace render

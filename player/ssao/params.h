@@ -10,10 +10,14 @@
 namespace ssao {
 
 struct AoSettings {
-  int samples = 8;                    // per radius, 1..64
+  Estimator estimator = Estimator::sphere;
+  int samples = 8;                    // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
   int radii = 5;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
   float bias = 0.03f;                 // depth bias as a fraction of each radius
+  bool half_resolution = false;       // AO at half width and height, then depth-aware upsampling
+  bool depth_chain = true;            // large radii read coarser levels of the depth chain
+  bool skip_radii = true;             // drop radii under a pixel or far beyond the scene, per frame
 };
 
 enum class Blur { off, gaussian, bilateral };
@@ -27,9 +31,22 @@ struct BlurSettings {
   float depth_tolerance = 0.05f;      // bilateral: depth difference, relative to depth, that halves trust
 };
 
-// `base_radius` is in world (= view) units; `projection` maps view space to clip space.
-shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius,
-                                           const glm::mat4& projection, int width, int height);
+// The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
+// the full resolution (the AO resolution follows from settings.half_resolution).
+shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height);
+
+// What the camera decides each frame: the projection, and from the scene's depth range which radii
+// are worth computing and which depth-chain level each one reads.
+struct FrameView {
+  glm::mat4 projection{1.0f};
+  float nearest_depth = 1.0f;  // closest the scene's bounding sphere comes to the eye (>= near)
+  float centre_depth = 1.0f;   // distance to the scene's centre
+  float scene_radius = 1.0f;
+};
+void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& settings, const FrameView& view);
+
+// Levels of the depth chain for a full-resolution image (level 0 included).
+int depth_chain_levels(int width, int height);
 // direction 0: horizontal, 1: vertical.
 shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height);
 

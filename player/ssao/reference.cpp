@@ -1,5 +1,7 @@
 #include "ssao/reference.h"
 
+#include "ssao/params.h"
+
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
@@ -8,49 +10,170 @@
 namespace ssao {
 namespace {
 
+constexpr float kPi = 3.14159265358979f;
+
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
+
+size_t index(glm::ivec2 p, int width) { return static_cast<size_t>(p.y) * static_cast<size_t>(width) + static_cast<size_t>(p.x); }
+
+bool outside(glm::ivec2 p, glm::ivec2 size) { return p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y; }
+
+struct Frame {
+  const DepthChain& depth;
+  const shared_layout::SsaoParams& p;
+  glm::ivec2 full;
+
+  float radius_at(int k) const { return k < 4 ? p.radii_0_3[k] : p.radius_4_bias.x; }
+  int level_at(int k) const { return k < 4 ? p.lods_0_3[k] : p.config.x; }
+  float depth_at(glm::ivec2 texel, int level) const {
+    const glm::ivec2 size = depth.sizes[static_cast<size_t>(level)];
+    return depth.at(glm::min(glm::ivec2(texel.x >> level, texel.y >> level), size - 1), level);
+  }
+  glm::vec3 view_position(glm::ivec2 texel, float d) const {
+    const glm::vec2 ndc = (glm::vec2(texel) + 0.5f) / glm::vec2(full) * 2.0f - 1.0f;
+    return {(ndc.x + p.unproject.z) * d * p.unproject.x, (ndc.y + p.unproject.w) * d * p.unproject.y, -d};
+  }
+
+  float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level) const {
+    const float bias = p.radius_4_bias.y * radius;
+    int hidden = 0;
+    for (int i = 0; i < p.counts.x; ++i) {
+      const glm::vec3 sample = position + radius * (basis * glm::vec3(p.kernel[i]));
+      const glm::vec4 clip = p.projection * glm::vec4(sample, 1.0f);
+      if (clip.w <= 0.0f) continue;
+      const glm::vec2 uv = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(full);
+      const glm::ivec2 texel(static_cast<int>(std::floor(uv.x)), static_cast<int>(std::floor(uv.y)));
+      if (outside(texel, full)) continue;
+      const float surface = depth_at(texel, level);
+      const float sample_depth = -sample.z;
+      if (surface > 0.0f && surface < sample_depth - bias && std::abs(d - surface) < radius) ++hidden;
+    }
+    return static_cast<float>(hidden) / static_cast<float>(p.counts.x);
+  }
+
+  float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, float d, float turn_angle,
+                          float radius, int level) const {
+    const float radius_pixels = radius * p.radius_4_bias.z / d;
+    if (radius_pixels < 1.0f) return 0.0f;
+    const int slices = std::max(1, p.counts.x / 8);
+    const int steps = std::max(1, p.counts.x / (2 * slices));
+    const glm::vec3 view = glm::normalize(-position);
+    float visibility = 0.0f;
+    for (int slice = 0; slice < slices; ++slice) {
+      const glm::vec2 jitter(p.kernel[slice]);
+      const float phi = kPi * (static_cast<float>(slice) + jitter.x) / static_cast<float>(slices) + turn_angle;
+      const glm::vec2 direction(std::cos(phi), std::sin(phi));
+      const glm::vec3 direction_view(direction, 0.0f);
+      const glm::vec3 ortho = direction_view - glm::dot(direction_view, view) * view;
+      const glm::vec3 axis = glm::normalize(glm::cross(ortho, view));
+      const glm::vec3 projected_normal = normal - axis * glm::dot(normal, axis);
+      const float projected_length = glm::length(projected_normal);
+      if (projected_length < 1e-6f) continue;
+      const float cos_normal = std::clamp(glm::dot(projected_normal, view) / projected_length, -1.0f, 1.0f);
+      const float side_sign = glm::dot(ortho, projected_normal);
+      const float gamma = (side_sign > 0.0f ? 1.0f : side_sign < 0.0f ? -1.0f : 0.0f) * std::acos(cos_normal);
+      float horizon_plus = std::cos(gamma + 0.5f * kPi), horizon_minus = std::cos(gamma - 0.5f * kPi);
+      for (int step = 0; step < steps; ++step) {
+        const float distance_pixels = std::max((static_cast<float>(step) + jitter.y) / static_cast<float>(steps) * radius_pixels,
+                                               static_cast<float>(step + 1));
+        for (int side = 0; side < 2; ++side) {
+          const glm::vec2 offset = (side == 0 ? 1.0f : -1.0f) * distance_pixels * direction;
+          const glm::ivec2 texel = pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)),
+                                                      static_cast<int>(std::floor(offset.y + 0.5f)));
+          if (outside(texel, full)) continue;
+          const float sample_depth = depth_at(texel, level);
+          if (sample_depth <= 0.0f) continue;
+          const glm::vec3 delta = view_position(texel, sample_depth) - position;
+          const float distance = glm::length(delta);
+          if (distance >= radius || distance <= 0.0f) continue;
+          const float horizon = glm::dot(delta, view) / distance;
+          if (side == 0) horizon_plus = std::max(horizon_plus, horizon);
+          else horizon_minus = std::max(horizon_minus, horizon);
+        }
+      }
+      float h0 = -std::acos(std::clamp(horizon_minus, -1.0f, 1.0f));
+      float h1 = std::acos(std::clamp(horizon_plus, -1.0f, 1.0f));
+      h0 = gamma + std::max(h0 - gamma, -0.5f * kPi);
+      h1 = gamma + std::min(h1 - gamma, 0.5f * kPi);
+      const float arc0 = (cos_normal + 2.0f * h0 * std::sin(gamma) - std::cos(2.0f * h0 - gamma)) * 0.25f;
+      const float arc1 = (cos_normal + 2.0f * h1 * std::sin(gamma) - std::cos(2.0f * h1 - gamma)) * 0.25f;
+      visibility += projected_length * (arc0 + arc1);
+    }
+    return std::clamp(1.0f - visibility / static_cast<float>(slices), 0.0f, 1.0f);
+  }
+};
 
 }  // namespace
 
-std::vector<AoTexel> reference_ssao(const std::vector<float>& linear_depth, const shared_layout::SsaoParams& params,
-                                    float inverse_far) {
+float DepthChain::at(glm::ivec2 texel, int level) const {
+  return levels[static_cast<size_t>(level)][index(texel, sizes[static_cast<size_t>(level)].x)];
+}
+
+DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, int height) {
+  DepthChain chain;
+  chain.levels.push_back(linear_depth);
+  chain.sizes.emplace_back(width, height);
+  const int count = depth_chain_levels(width, height);
+  for (int level = 1; level < count; ++level) {
+    const glm::ivec2 source_size = chain.sizes.back();
+    const glm::ivec2 size(std::max(source_size.x >> 1, 1), std::max(source_size.y >> 1, 1));
+    std::vector<float> values(static_cast<size_t>(size.x) * static_cast<size_t>(size.y));
+    const std::vector<float>& source = chain.levels.back();
+    for (int y = 0; y < size.y; ++y)
+      for (int x = 0; x < size.x; ++x) {
+        float sum = 0.0f;
+        int valid = 0;
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const glm::ivec2 s(x * 2 + dx, y * 2 + dy);
+            if (s.x >= source_size.x || s.y >= source_size.y) continue;
+            const float d = source[index(s, source_size.x)];
+            if (d > 0.0f) {
+              sum += d;
+              ++valid;
+            }
+          }
+        values[index({x, y}, size.x)] = valid > 0 ? sum / static_cast<float>(valid) : 0.0f;
+      }
+    chain.levels.push_back(std::move(values));
+    chain.sizes.push_back(size);
+  }
+  return chain;
+}
+
+std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator) {
+  const Frame frame{depth, params, glm::ivec2(params.config.z, params.config.w)};
   const int width = params.counts.z, height = params.counts.w;
   std::vector<AoTexel> out(static_cast<size_t>(width) * static_cast<size_t>(height), AoTexel(0.0f));
-  auto depth_at = [&](int x, int y) { return linear_depth[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; };
-  const float radii[SSAO_MAX_RADII] = {params.radii_0_3.x, params.radii_0_3.y, params.radii_0_3.z,
-                                       params.radii_0_3.w, params.radius_4_bias.x};
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      const float depth = depth_at(x, y);
-      if (depth <= 0.0f) continue;
-      const glm::vec2 ndc = (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + 0.5f) /
-                                glm::vec2(static_cast<float>(width), static_cast<float>(height)) * 2.0f - 1.0f;
-      const glm::vec3 position((ndc.x + params.unproject.z) * depth * params.unproject.x,
-                               (ndc.y + params.unproject.w) * depth * params.unproject.y, -depth);
-      const glm::vec2 turn(params.rotation[(y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + x % SSAO_ROTATION_TILE]);
-      float ao = 0.0f;
-      for (int k = 0; k < params.counts.y; ++k) {
-        const float radius = radii[k];
-        const float bias = params.radius_4_bias.y * radius;
-        int hidden = 0;
-        for (int i = 0; i < params.counts.x; ++i) {
-          const glm::vec3 o(params.kernel[i]);
-          const glm::vec3 offset(turn.x * o.x - turn.y * o.y, turn.y * o.x + turn.x * o.y, o.z);
-          const glm::vec3 sample = position + radius * offset;
-          const glm::vec4 clip = params.projection * glm::vec4(sample, 1.0f);
-          if (clip.w <= 0.0f) continue;
-          const glm::vec2 uv = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) *
-                               glm::vec2(static_cast<float>(width), static_cast<float>(height));
-          const int tx = static_cast<int>(std::floor(uv.x)), ty = static_cast<int>(std::floor(uv.y));
-          if (tx < 0 || ty < 0 || tx >= width || ty >= height) continue;
-          const float surface = depth_at(tx, ty);
-          const float sample_depth = -sample.z;
-          if (surface > 0.0f && surface < sample_depth - bias && std::abs(depth - surface) < radius) ++hidden;
+      const glm::ivec2 pixel(x << params.config.y, y << params.config.y);
+      const float d = depth.at(pixel, 0);
+      if (d <= 0.0f) continue;
+      const glm::vec3 position = frame.view_position(pixel, d);
+      const glm::vec2 turn(params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE]);
+      const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, frame.full.x)];
+      glm::mat3 basis(turn.x, turn.y, 0.0f, -turn.y, turn.x, 0.0f, 0.0f, 0.0f, 1.0f);
+      if (estimator == Estimator::hemisphere) {
+        const glm::vec3 reference(turn, 0.0f);
+        glm::vec3 tangent = reference - normal * glm::dot(reference, normal);
+        if (glm::dot(tangent, tangent) < 1e-6f) {
+          const glm::vec3 other(-turn.y, turn.x, 0.0f);
+          tangent = other - normal * glm::dot(other, normal);
         }
-        ao = std::max(ao, static_cast<float>(hidden) / static_cast<float>(params.counts.x));
+        tangent = glm::normalize(tangent);
+        basis = glm::mat3(tangent, glm::cross(normal, tangent), normal);
       }
-      out[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] =
-          AoTexel(to_half(ao), to_half(depth * inverse_far));
+      float ao = params.radius_4_bias.w;
+      for (int k = params.radius_range.x; k < params.radius_range.y; ++k) {
+        const float radius = frame.radius_at(k);
+        const int level = frame.level_at(k);
+        ao = std::max(ao, estimator == Estimator::horizon
+                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
+                              : frame.hidden_share(position, d, basis, radius, level));
+      }
+      out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));
     }
   }
   return out;
@@ -61,12 +184,11 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
   const int width = params.config.z, height = params.config.w;
   const glm::ivec2 step = params.config.y == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
   std::vector<AoTexel> out(source.size());
-  auto at = [&](glm::ivec2 p) { return source[static_cast<size_t>(p.y) * static_cast<size_t>(width) + static_cast<size_t>(p.x)]; };
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const glm::ivec2 pixel(x, y);
-      const AoTexel centre = at(pixel);
-      AoTexel& result = out[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
+      const AoTexel centre = source[index(pixel, width)];
+      AoTexel& result = out[index(pixel, width)];
       if (centre.y <= 0.0f) {
         result = centre;
         continue;
@@ -76,7 +198,7 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
       for (int i = 1; i <= params.config.x; ++i) {
         for (int side = -1; side <= 1; side += 2) {
           const glm::ivec2 tap = glm::clamp(pixel + side * i * step, glm::ivec2(0), glm::ivec2(width - 1, height - 1));
-          const AoTexel value = at(tap);
+          const AoTexel value = source[index(tap, width)];
           float weight = params.weights[i].x;
           if (bilateral) {
             const float tolerance = params.bilateral.x * centre.y;
@@ -90,6 +212,31 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
       result = AoTexel(to_half(sum / total), centre.y);
     }
   }
+  return out;
+}
+
+std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
+                                        const shared_layout::UpsampleParams& params) {
+  const glm::ivec2 full(params.config.x, params.config.y), small(params.config.z, params.config.w);
+  std::vector<AoTexel> out(static_cast<size_t>(full.x) * static_cast<size_t>(full.y), AoTexel(0.0f));
+  for (int y = 0; y < full.y; ++y)
+    for (int x = 0; x < full.x; ++x) {
+      const float depth = linear_depth[index({x, y}, full.x)] * params.depth.x;
+      if (depth <= 0.0f) continue;
+      float best_difference = 1e30f, best_ao = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const glm::ivec2 texel = glm::clamp(glm::ivec2((x >> 1) + dx, (y >> 1) + dy), glm::ivec2(0), small - 1);
+          const AoTexel value = low[index(texel, small.x)];
+          if (value.y <= 0.0f) continue;
+          const float difference = std::abs(value.y - depth);
+          if (difference < best_difference) {
+            best_difference = difference;
+            best_ao = value.x;
+          }
+        }
+      out[index({x, y}, full.x)] = AoTexel(best_ao, to_half(depth));
+    }
   return out;
 }
 

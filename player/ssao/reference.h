@@ -1,7 +1,9 @@
 #pragma once
-// CPU reference of the AO passes: the same algorithm as ssao.comp and blur.comp, step for step, in
-// 32-bit floats, rounding to half floats where the GPU stores rgba16f. Tests compare the GPU with it.
+// CPU reference of the AO passes: the same algorithms as depth_chain.comp, ssao.comp, blur.comp and
+// upsample.comp, step for step, in 32-bit floats, rounding to half floats where the GPU stores
+// rgba16f. Tests compare the GPU with it.
 #include "gles_shaders/shared_layout.h"
+#include "ssao/sampling.h"
 
 #include <vector>
 
@@ -10,10 +12,21 @@ namespace ssao {
 // One pixel of the AO images: x = AO, y = linear depth / far (0 for background).
 using AoTexel = glm::vec2;
 
-// linear_depth: width x height, row 0 at the bottom (GL order), 0 for background.
-std::vector<AoTexel> reference_ssao(const std::vector<float>& linear_depth, const shared_layout::SsaoParams& params,
-                                    float inverse_far);
+// A full-resolution image and its coarser levels, row 0 at the bottom (GL order), 0 for background.
+struct DepthChain {
+  std::vector<std::vector<float>> levels;
+  std::vector<glm::ivec2> sizes;
+  float at(glm::ivec2 texel, int level) const;
+};
+DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, int height);
+
+// AO at the AO resolution of `params` (full or half). `view_normals` are the G-buffer's view-space
+// normals at full resolution (used by the hemisphere and horizon estimators).
+std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator);
 std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params,
                                     bool bilateral);
+std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
+                                        const shared_layout::UpsampleParams& params);
 
 }  // namespace ssao

@@ -19,6 +19,21 @@ std::string_view name(Pattern pattern) {
   return "?";
 }
 
+std::string_view name(Estimator estimator) {
+  switch (estimator) {
+    case Estimator::sphere: return "sphere";
+    case Estimator::hemisphere: return "hemisphere";
+    case Estimator::horizon: return "horizon";
+  }
+  return "?";
+}
+
+std::optional<Estimator> parse_estimator(std::string_view text) {
+  for (Estimator estimator : kEstimators)
+    if (name(estimator) == text) return estimator;
+  return std::nullopt;
+}
+
 std::optional<Pattern> parse_pattern(std::string_view text) {
   for (Pattern pattern : kPatterns)
     if (name(pattern) == text) return pattern;
@@ -168,18 +183,31 @@ double shell_radius(double u, double rmin, double rmax) {
   return std::cbrt(t);
 }
 
-std::vector<glm::dvec3> make_kernel(Pattern pattern, int n) {
+glm::dvec3 cosine_hemisphere_point(glm::dvec2 xi) {
+  const glm::dvec2 u = (xi + 1.0) * 0.5;
+  const double r = std::sqrt(u.x);
+  const double phi = 2.0 * std::numbers::pi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u.x))};
+}
+
+std::vector<glm::dvec3> make_kernel(Estimator estimator, Pattern pattern, int n) {
   const uint64_t seed = 0x55A0'0000ull + static_cast<uint64_t>(n) * 16 + static_cast<uint64_t>(pattern);
   const std::vector<glm::dvec2> xi = square_points(pattern, n, seed);
+  std::vector<glm::dvec3> kernel;
+  if (estimator == Estimator::horizon) {
+    for (const glm::dvec2& p : xi) kernel.emplace_back((p + 1.0) * 0.5, 0.0);
+    return kernel;
+  }
   // The radius variable is stratified (one sample per 1/n of the shell's volume, in shuffled
   // order) for every pattern but plain random, where it is random like the directions.
   Random random(seed ^ 0xFFFF'0000'0000ull);
   const std::vector<int> stratum = permutation(n, random);
-  std::vector<glm::dvec3> kernel;
   for (int i = 0; i < n; ++i) {
     const double u = pattern == Pattern::random ? random.uniform()
                                                 : (stratum[static_cast<size_t>(i)] + random.uniform()) / n;
-    kernel.push_back(shell_radius(u, kShellMin, 1.0) * sphere_point(xi[static_cast<size_t>(i)]));
+    const glm::dvec2 p = xi[static_cast<size_t>(i)];
+    const glm::dvec3 direction = estimator == Estimator::sphere ? sphere_point(p) : cosine_hemisphere_point(p);
+    kernel.push_back(shell_radius(u, kShellMin, 1.0) * direction);
   }
   return kernel;
 }

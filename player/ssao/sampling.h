@@ -12,6 +12,13 @@
 
 namespace ssao {
 
+// What the kernel is for: the paper's sphere around the point (Mittring), a cosine-weighted
+// hemisphere about the normal, or the slices and steps of a horizon search (GTAO).
+enum class Estimator { sphere, hemisphere, horizon };
+inline constexpr Estimator kEstimators[] = {Estimator::sphere, Estimator::hemisphere, Estimator::horizon};
+std::string_view name(Estimator estimator);
+std::optional<Estimator> parse_estimator(std::string_view text);
+
 enum class Pattern { random, jittered, latin, poisson };
 inline constexpr Pattern kPatterns[] = {Pattern::random, Pattern::jittered, Pattern::latin, Pattern::poisson};
 std::string_view name(Pattern pattern);
@@ -40,8 +47,15 @@ double shell_radius(double u, double rmin, double rmax);
 // The paper's shell: rmin = 0.8 R, rmax = R.
 inline constexpr double kShellMin = 0.8;
 
-// The kernel for `pattern` with n samples: points in the unit ball's shell [0.8, 1].
-std::vector<glm::dvec3> make_kernel(Pattern pattern, int n);
+// (xi1, xi2) in [-1, 1]^2 to a cosine-weighted direction about +Z (Malley: the uniform disc lifted).
+glm::dvec3 cosine_hemisphere_point(glm::dvec2 xi);
+
+// The kernel for `estimator` and `pattern` with n samples:
+//  sphere:     points in the unit ball's shell [0.8, 1] (Algorithms 3 and 4);
+//  hemisphere: cosine-weighted directions about +Z with shell radii, in the normal's frame;
+//  horizon:    (u1, u2, 0) in [0, 1)^2: slice-angle and step jitter of each slice.
+std::vector<glm::dvec3> make_kernel(Estimator estimator, Pattern pattern, int n);
+inline std::vector<glm::dvec3> make_kernel(Pattern pattern, int n) { return make_kernel(Estimator::sphere, pattern, n); }
 
 // Per-pixel turns about the view axis, a 4x4 tile in Bayer order so neighbours differ most.
 std::vector<double> make_rotation_angles();

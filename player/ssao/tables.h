@@ -9,8 +9,8 @@ namespace ssao {
 
 inline constexpr int kMaxKernelSamples = 64;
 
-// The kernel of `pattern` with n samples (1..kMaxKernelSamples): unit-ball points, shell [0.8, 1].
-std::span<const glm::vec3> kernel(Pattern pattern, int n);
+// The kernel of `estimator` and `pattern` with n samples (1..kMaxKernelSamples), see make_kernel.
+std::span<const glm::vec3> kernel(Estimator estimator, Pattern pattern, int n);
 // Angles of the 4x4 per-pixel rotation tile, row-major.
 std::span<const float> rotation_angles();
 // Radius fractions of the multi-resolution SSAO, largest first.

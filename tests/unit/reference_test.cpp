@@ -9,6 +9,24 @@ namespace {
 
 constexpr int kSize = 64;
 
+// The SSAO block for a camera at the origin with a 45-degree square frustum, as the renderer makes it.
+shared_layout::SsaoParams params_for(const ssao::AoSettings& settings, float radius) {
+  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
+  auto params = ssao::make_ssao_params(settings, radius, kSize, kSize);
+  ssao::FrameView view;
+  view.projection = projection;
+  view.nearest_depth = view.centre_depth = 5.0f;
+  view.scene_radius = 10.0f;
+  ssao::update_for_frame(params, settings, view);
+  return params;
+}
+
+std::vector<ssao::AoTexel> run(const std::vector<float>& depth, const shared_layout::SsaoParams& params,
+                               ssao::Estimator estimator = ssao::Estimator::sphere) {
+  const std::vector<glm::vec3> facing(depth.size(), glm::vec3(0, 0, 1));
+  return ssao::reference_ssao(ssao::build_depth_chain(depth, kSize, kSize), facing, params, 1.0f / 20.0f, estimator);
+}
+
 // What the sphere estimator gives on an unbounded plane facing the camera: the share of kernel
 // samples farther than the bias behind the plane. The turn about the view axis leaves z alone.
 float plane_prediction(const shared_layout::SsaoParams& params) {
@@ -20,17 +38,17 @@ float plane_prediction(const shared_layout::SsaoParams& params) {
 class ReferenceOnPlane : public ::testing::TestWithParam<ssao::Pattern> {};
 
 TEST_P(ReferenceOnPlane, FacingPlaneGetsThePredictedValueAndBackgroundGetsZero) {
-  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
   ssao::AoSettings settings;
   settings.pattern = GetParam();
   settings.samples = 16;
+  settings.depth_chain = false;
   const float depth = 5.0f, radius = 0.3f;
-  const auto params = ssao::make_ssao_params(settings, radius, projection, kSize, kSize);
+  const auto params = params_for(settings, radius);
   // A plane at depth 5 covering the image but for a background strip on the left.
   std::vector<float> image(kSize * kSize, depth);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < 4; ++x) image[static_cast<size_t>(y * kSize + x)] = 0.0f;
-  const auto ao = ssao::reference_ssao(image, params, 1.0f / 20.0f);
+  const auto ao = run(image, params);
   const float expected = plane_prediction(params);
   ASSERT_GT(expected, 0.0f);
   // The largest radius spans 0.3 / (5 * tan(22.5 deg)) * 32 = 4.6 pixels: stay 6 pixels off every edge.
@@ -48,15 +66,14 @@ INSTANTIATE_TEST_SUITE_P(AllPatterns, ReferenceOnPlane,
 TEST(Reference, StepEdgeOccludesTheLowerSideOnly) {
   // Left half of the image is a plane at depth 5, right half a plane at depth 4.8 (closer): the step's
   // foot (far side, next to the closer wall) gains occlusion; the top of the step does not.
-  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
   ssao::AoSettings settings;
   settings.samples = 32;
   settings.radii = 1;
-  const auto params = ssao::make_ssao_params(settings, 0.4f, projection, kSize, kSize);
+  const auto params = params_for(settings, 0.4f);
   std::vector<float> image(kSize * kSize);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) image[static_cast<size_t>(y * kSize + x)] = x < kSize / 2 ? 5.0f : 4.8f;
-  const auto ao = ssao::reference_ssao(image, params, 1.0f / 20.0f);
+  const auto ao = run(image, params);
   const float flat = plane_prediction(params);
   EXPECT_GT(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, flat + 0.05f);  // the foot of the step
   EXPECT_NEAR(ao[static_cast<size_t>(32 * kSize + kSize / 2 + 8)].x, flat, 1e-3);   // on top, far from the edge
@@ -65,17 +82,164 @@ TEST(Reference, StepEdgeOccludesTheLowerSideOnly) {
 TEST(Reference, RangeCheckIgnoresFarOccluders) {
   // A plane at depth 5 with a near object at depth 1 covering the right half: the object is 4 units
   // in front, beyond every radius, so the plane next to it keeps the flat value (no halo).
-  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
   ssao::AoSettings settings;
   settings.samples = 16;
-  const auto params = ssao::make_ssao_params(settings, 0.3f, projection, kSize, kSize);
+  const auto params = params_for(settings, 0.3f);
   std::vector<float> image(kSize * kSize);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) image[static_cast<size_t>(y * kSize + x)] = x < kSize / 2 ? 5.0f : 1.0f;
-  const auto ao = ssao::reference_ssao(image, params, 1.0f / 20.0f);
+  const auto ao = run(image, params);
   // Without the check the near object would hide nearly every sample (AO near 1); with it, the
   // pixel never exceeds what the plane alone gives.
   EXPECT_LE(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, plane_prediction(params) + 1e-3);
+}
+
+TEST(Reference, HemisphereAndHorizonGiveNoOcclusionOnAFacingPlane) {
+  // Both integrate over the hemisphere above the surface, so an open plane is unoccluded (the sphere
+  // estimator's 0.5 is the half of its sphere below the plane).
+  std::vector<float> image(kSize * kSize, 5.0f);
+  ssao::AoSettings settings;
+  settings.samples = 16;
+  settings.estimator = ssao::Estimator::hemisphere;
+  const auto hemisphere = run(image, params_for(settings, 0.3f), settings.estimator);
+  settings.estimator = ssao::Estimator::horizon;
+  const auto horizon = run(image, params_for(settings, 0.3f), settings.estimator);
+  double horizon_sum = 0.0;
+  int count = 0;
+  for (int y = 8; y < kSize - 8; ++y)
+    for (int x = 8; x < kSize - 8; ++x) {
+      const size_t i = static_cast<size_t>(y * kSize + x);
+      EXPECT_EQ(hemisphere[i].x, 0.0f);
+      // Away from the image centre the view vector leans off the normal, and the cosine integral over
+      // two slices is exact only on average over slice angles: the 4x4 turn tile supplies those angles.
+      EXPECT_LT(horizon[i].x, 0.06f);
+      horizon_sum += horizon[i].x;
+      ++count;
+    }
+  EXPECT_LT(horizon_sum / count, 0.01);
+  EXPECT_NEAR(horizon[static_cast<size_t>(32 * kSize + 32)].x, 0.0f, 1e-5);  // near the axis the slices agree
+}
+
+TEST(Reference, HorizonSeesAStepWallAtTheFoot) {
+  // The foot of a step (plane at depth 5, a closer plane at 4.8 beginning two pixels to the right):
+  // the wall rises into the hemisphere, so the horizon estimator reports occlusion there.
+  std::vector<float> image(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) image[static_cast<size_t>(y * kSize + x)] = x < kSize / 2 ? 5.0f : 4.8f;
+  ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::horizon;
+  settings.samples = 16;
+  const auto ao = run(image, params_for(settings, 0.4f), ssao::Estimator::horizon);
+  EXPECT_GT(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, 0.05f);
+  EXPECT_LT(ao[static_cast<size_t>(32 * kSize + 8)].x, 0.06f);  // open plane: only the slice-angle error (above)
+}
+
+TEST(Reference, DepthChainKeepsObjectDepthsAndHalvesTheSize) {
+  std::vector<float> image(5 * 3, 0.0f);
+  image[0] = 2.0f;
+  image[1] = 4.0f;  // a 2x2 block with two object texels and two background ones
+  const ssao::DepthChain chain = ssao::build_depth_chain(image, 5, 3);
+  ASSERT_GE(chain.levels.size(), 3u);
+  EXPECT_EQ(chain.sizes[1], glm::ivec2(2, 1));
+  EXPECT_EQ(chain.sizes[2], glm::ivec2(1, 1));
+  EXPECT_FLOAT_EQ(chain.at({0, 0}, 1), 3.0f);  // the mean of the object texels only
+  EXPECT_FLOAT_EQ(chain.at({1, 0}, 1), 0.0f);  // all background stays background
+  EXPECT_FLOAT_EQ(chain.at({0, 0}, 2), 3.0f);
+}
+
+TEST(Reference, UpsamplingTakesTheLowResolutionTexelOfTheClosestDepth) {
+  // Low resolution 2x1: left texel AO 1 at depth 0.2, right texel AO 0 at depth 0.6. A full-resolution
+  // pixel at depth 0.6 inside the left block must take the right texel's AO.
+  shared_layout::UpsampleParams params{};
+  params.config = glm::ivec4(4, 2, 2, 1);
+  params.depth = glm::vec4(1.0f, 0, 0, 0);
+  const std::vector<ssao::AoTexel> low = {{1.0f, 0.2f}, {0.0f, 0.6f}};
+  const std::vector<float> depth = {0.2f, 0.6f, 0.6f, 0.6f, 0.2f, 0.2f, 0.6f, 0.0f};
+  const auto full = ssao::reference_upsample(low, depth, params);
+  EXPECT_EQ(full[0].x, 1.0f);
+  EXPECT_EQ(full[1].x, 0.0f);
+  EXPECT_EQ(full[4].x, 1.0f);
+  EXPECT_EQ(full[7].x, 0.0f);  // background
+  EXPECT_EQ(full[7].y, 0.0f);
+}
+
+TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
+  ssao::AoSettings settings;
+  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 200.0f);
+  // Radii 8, 4, 2, 1, 0.5 in a scene of radius 1.5 seen from 100 units on a 64-pixel image (77 pixels
+  // per unit at depth 1): 8 and 4 exceed the scene's diameter (3); at depth 98.5, radius 1 spans
+  // 0.79 pixels and 0.5 spans 0.39, but only radii under a quarter pixel are skipped: none here.
+  auto params = ssao::make_ssao_params(settings, 8.0f, kSize, kSize);
+  ssao::FrameView view;
+  view.projection = projection;
+  view.centre_depth = 100.0f;
+  view.nearest_depth = 98.5f;
+  view.scene_radius = 1.5f;
+  ssao::update_for_frame(params, settings, view);
+  EXPECT_EQ(params.radius_range.x, 1);  // radius 4 stands for everything larger than the scene
+  EXPECT_EQ(params.radius_range.y, 5);
+  EXPECT_EQ(params.radius_4_bias.w, 0.0f);
+  view.nearest_depth = view.centre_depth = 400.0f;  // now 1 spans 0.19 pixels and 0.5 spans 0.1
+  ssao::update_for_frame(params, settings, view);
+  EXPECT_EQ(params.radius_range.y, 3);
+  int behind = 0;
+  for (int i = 0; i < params.counts.x; ++i) behind += params.kernel[i].z < -settings.bias ? 1 : 0;
+  EXPECT_EQ(params.radius_4_bias.w, static_cast<float>(behind) / static_cast<float>(params.counts.x));
+  settings.skip_radii = false;
+  ssao::update_for_frame(params, settings, view);
+  EXPECT_EQ(params.radius_range, glm::ivec4(0, 5, 0, 0));
+  EXPECT_EQ(params.radius_4_bias.w, 0.0f);
+}
+
+TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
+  // The sphere estimator on a slanted surface with a radius of a tenth of a pixel: the value the
+  // skip substitutes equals the computed one at every pixel.
+  std::vector<float> image(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) image[static_cast<size_t>(y * kSize + x)] = 5.0f + 0.02f * static_cast<float>(x);
+  ssao::AoSettings settings;
+  settings.radii = 1;
+  settings.depth_chain = false;
+  const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
+  auto params = ssao::make_ssao_params(settings, 0.01f, kSize, kSize);  // 0.01 * 77 / 5 = 0.15 pixels
+  ssao::FrameView view;
+  view.projection = projection;
+  view.nearest_depth = view.centre_depth = 5.0f;
+  view.scene_radius = 2.0f;
+  settings.skip_radii = false;
+  ssao::update_for_frame(params, settings, view);
+  const auto computed = run(image, params);
+  settings.skip_radii = true;
+  ssao::update_for_frame(params, settings, view);
+  ASSERT_EQ(params.radius_range.y, params.radius_range.x + 1);  // the one radius is always kept...
+  settings.radii = 2;  // ...so skip the second of two instead
+  auto two = ssao::make_ssao_params(settings, 0.02f, kSize, kSize);
+  ssao::update_for_frame(two, settings, view);
+  ASSERT_EQ(two.radius_range.y, 1);
+  two.radius_range.x = 0;
+  two.radii_0_3.x = 0.0f;  // the kept radius contributes nothing, so only the substitute is left
+  const auto substituted = run(image, two);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const size_t i = static_cast<size_t>(y * kSize + x);
+      EXPECT_EQ(substituted[i].x, computed[i].x) << x << "," << y;
+    }
+}
+
+TEST(Frame, LargeRadiiReadCoarserDepthLevels) {
+  ssao::AoSettings settings;
+  auto params = ssao::make_ssao_params(settings, 2.0f, 1024, 768);
+  ssao::FrameView view;
+  view.projection = glm::perspective(glm::radians(45.0f), 4.0f / 3.0f, 0.5f, 50.0f);
+  view.centre_depth = view.nearest_depth = 5.0f;
+  view.scene_radius = 3.0f;
+  ssao::update_for_frame(params, settings, view);
+  // Radius 2 at depth 5 spans 2 * 927 / 5 = 371 pixels: level floor(log2(371 / 16)) = 4; radius 0.125: 23 pixels: level 0.
+  EXPECT_EQ(params.lods_0_3.x, 4);
+  EXPECT_EQ(params.config.x, 0);
+  settings.depth_chain = false;
+  ssao::update_for_frame(params, settings, view);
+  EXPECT_EQ(params.lods_0_3, glm::ivec4(0));
 }
 
 TEST(Reference, GaussianBlurPreservesAConstantAndBilateralStopsAtDepthEdges) {

@@ -109,15 +109,16 @@ TEST(Sampling, StratifiedKernelsAreBetterBalancedThanRandomOnes) {
 }
 
 TEST(Tables, CompiledTablesAreTheGeneratorsOutput) {
-  for (Pattern pattern : ssao::kPatterns) {
-    for (int n = 1; n <= ssao::kMaxKernelSamples; n += 7) {
-      const auto expected = ssao::make_kernel(pattern, n);
-      const auto table = ssao::kernel(pattern, n);
-      ASSERT_EQ(table.size(), expected.size());
-      for (size_t i = 0; i < table.size(); ++i)
-        for (int c = 0; c < 3; ++c) EXPECT_EQ(table[i][c], static_cast<float>(expected[i][c]));
+  for (ssao::Estimator estimator : ssao::kEstimators)
+    for (Pattern pattern : ssao::kPatterns) {
+      for (int n = 1; n <= ssao::kMaxKernelSamples; n += 7) {
+        const auto expected = ssao::make_kernel(estimator, pattern, n);
+        const auto table = ssao::kernel(estimator, pattern, n);
+        ASSERT_EQ(table.size(), expected.size());
+        for (size_t i = 0; i < table.size(); ++i)
+          for (int c = 0; c < 3; ++c) EXPECT_EQ(table[i][c], static_cast<float>(expected[i][c]));
+      }
     }
-  }
   const auto angles = ssao::make_rotation_angles();
   ASSERT_EQ(ssao::rotation_angles().size(), angles.size());
   for (size_t i = 0; i < angles.size(); ++i) EXPECT_EQ(ssao::rotation_angles()[i], static_cast<float>(angles[i]));
@@ -139,7 +140,34 @@ TEST(Tables, RotationTileTurnsNeighboursApart) {
     }
 }
 
+TEST(Sampling, HemisphereKernelsAreCosineWeightedAboutZ) {
+  // Cosine-weighted directions have E[z] = 2/3 and E[z^2] = 1/2; the kernel's points lie in the shell.
+  const auto xi = ssao::square_points(Pattern::random, 20000, 9);
+  double mean_z = 0.0, mean_z2 = 0.0;
+  for (const glm::dvec2& p : xi) {
+    const glm::dvec3 d = ssao::cosine_hemisphere_point(p);
+    EXPECT_NEAR(glm::length(d), 1.0, 1e-12);
+    ASSERT_GE(d.z, 0.0);
+    mean_z += d.z / 20000.0;
+    mean_z2 += d.z * d.z / 20000.0;
+  }
+  EXPECT_NEAR(mean_z, 2.0 / 3.0, 0.01);   // sd of z is 0.24: 4 standard errors of the mean is 0.007
+  EXPECT_NEAR(mean_z2, 0.5, 0.01);
+  for (const glm::dvec3& p : ssao::make_kernel(ssao::Estimator::hemisphere, Pattern::jittered, 16)) {
+    EXPECT_GE(p.z, 0.0);
+    EXPECT_GE(glm::length(p), ssao::kShellMin - 1e-12);
+    EXPECT_LE(glm::length(p), 1.0 + 1e-12);
+  }
+  for (const glm::dvec3& p : ssao::make_kernel(ssao::Estimator::horizon, Pattern::latin, 16)) {
+    EXPECT_GE(p.x, 0.0);
+    EXPECT_LT(p.x, 1.0);
+    EXPECT_GE(p.y, 0.0);
+    EXPECT_LT(p.y, 1.0);
+  }
+}
+
 TEST(Patterns, NamesRoundTrip) {
+  for (ssao::Estimator estimator : ssao::kEstimators) EXPECT_EQ(ssao::parse_estimator(ssao::name(estimator)), estimator);
   for (Pattern pattern : ssao::kPatterns) EXPECT_EQ(ssao::parse_pattern(ssao::name(pattern)), pattern);
   EXPECT_FALSE(ssao::parse_pattern("halton").has_value());
 }

@@ -9,7 +9,8 @@ using mat4 = glm::mat4;
 #include "../../shared_layout.glsl"
 
 // std140 lays these out exactly as C++ does only if every member is a 16-byte multiple.
-static_assert(sizeof(SsaoParams) == 64 + 16 * 4 + 16 * SSAO_MAX_SAMPLES + 16 * SSAO_ROTATION_TILE * SSAO_ROTATION_TILE);
+static_assert(sizeof(SsaoParams) == 64 + 16 * 7 + 16 * SSAO_MAX_SAMPLES + 16 * SSAO_ROTATION_TILE * SSAO_ROTATION_TILE);
+static_assert(sizeof(UpsampleParams) == 32);
 static_assert(sizeof(BlurParams) == 16 * (BLUR_MAX_RADIUS + 1) + 32);
 static_assert(sizeof(CompositeParams) == 64);
 }  // namespace shared_layout

@@ -40,7 +40,22 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--distance", render.framing.distance, "Camera distance as a multiple of the distance that just fits the scene")
       ->check(CLI::PositiveNumber)->capture_default_str();
   render_cmd->add_option("--ao", ao, "Ambient occlusion on or off")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-  render_cmd->add_option("--samples", render.frame.ao_settings.samples, "AO samples per radius")
+  render_cmd->add_option("--estimator", render.frame.ao_settings.estimator,
+                         "AO estimator: sphere (the paper, Mittring), hemisphere (cosine-weighted about the normal), horizon (GTAO)")
+      ->transform(CLI::CheckedTransformer(choices<ssao::Estimator>({{"sphere", ssao::Estimator::sphere},
+                                                                    {"hemisphere", ssao::Estimator::hemisphere},
+                                                                    {"horizon", ssao::Estimator::horizon}})))
+      ->default_str("sphere");
+  std::string resolution = "full", depth_chain = "on", skip_radii = "on", reuse_ao = "on";
+  render_cmd->add_option("--reuse-ao", reuse_ao, "Keep the last frame's AO while camera and scene stand still (off: recompute every frame, for timing)")
+      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--resolution", resolution, "AO resolution: full, or half with depth-aware upsampling")
+      ->check(CLI::IsMember({"full", "half"}))->capture_default_str();
+  render_cmd->add_option("--depth-chain", depth_chain, "Large radii read a downsampled depth chain")
+      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--skip-radii", skip_radii, "Skip radii under a quarter pixel or beyond the scene's size, per frame")
+      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--samples", render.frame.ao_settings.samples, "AO samples per radius (horizon: taps per pixel, 8 per slice)")
       ->check(CLI::Range(1, SSAO_MAX_SAMPLES))->capture_default_str();
   render_cmd->add_option("--radii", render.frame.ao_settings.radii, "AO radii (multi-resolution, merged by max)")
       ->check(CLI::Range(1, SSAO_MAX_RADII))->capture_default_str();
@@ -102,6 +117,10 @@ int main(int argc, char** argv) {
     render.frame.height = height;
     render.frame.ao = ao == "on";
     render.frame.depth_prepass = prepass == "on";
+    render.frame.ao_settings.half_resolution = resolution == "half";
+    render.frame.ao_settings.depth_chain = depth_chain == "on";
+    render.frame.ao_settings.skip_radii = skip_radii == "on";
+    render.frame.reuse_static_ao = reuse_ao == "on";
     return app::run_render(render, std::cout, std::cerr);
   }
   if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);

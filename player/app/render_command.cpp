@@ -39,8 +39,11 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
   const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
   const std::vector<float> depth = renderer.read_linear_depth();
   const std::vector<glm::vec3> view_normals = renderer.read_view_normals();
-  const std::vector<glm::vec2> ao_raw = renderer.read_ao_raw();
-  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_blurred();
+  // At half resolution the raw AO is smaller; each pixel takes the AO texel of its 2x2 block.
+  const std::vector<glm::vec2> ao_raw_low = renderer.read_ao_raw();
+  const int shift = options.frame.ao_settings.half_resolution ? 1 : 0;
+  const int low_width = renderer.ssao_params().counts.z;
+  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_final();
   const glm::dmat4 view = camera.view();
   const glm::dmat4 projection = camera.projection();
   const glm::dmat4 inverse_view = glm::inverse(view);
@@ -48,7 +51,7 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      raw[i] = ao_raw[i].x;
+      raw[i] = ao_raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(low_width) + static_cast<size_t>(x >> shift)].x;
       blurred[i] = ao_blurred[i].x;
       const double d = depth[i];
       if (d <= 0.0) continue;  // background: alpha 0 marks it
@@ -99,7 +102,10 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
         {"matrix_layout", "column-major: view[c] is column c"}}},
       {"ao",
        {{"enabled", frame.ao},
-        {"estimator", "sphere (Mittring, Algorithm 1)"},
+        {"estimator", std::string(ssao::name(frame.ao_settings.estimator))},
+        {"resolution", frame.ao_settings.half_resolution ? "half" : "full"},
+        {"depth_chain", frame.ao_settings.depth_chain},
+        {"skip_radii", frame.ao_settings.skip_radii},
         {"samples", params.counts.x},
         {"radii", radii},
         {"bias_fraction", params.radius_4_bias.y},
@@ -151,9 +157,11 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
 
   const int frames = std::max(1, options.frames);
   std::vector<render::PassTimes> times;
+  int reused = 0;
   for (int frame = 0; frame < frames; ++frame) {
     renderer.render(camera);
     times.push_back(renderer.collect_times());
+    reused += renderer.reused_ao() ? 1 : 0;
   }
   if (!renderer.gl_error().empty()) {
     err << "error: " << renderer.gl_error() << "\n";
@@ -194,6 +202,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
         << std::setprecision(3) << median << " ms\n";
   }
   out << "  " << std::left << std::setw(16) << "total" << std::right << std::setw(9) << total << " ms\n";
+  if (reused > 0)
+    out << "AO reused on " << reused << " of " << frames << " frames (camera still; --reuse-ao off to time every frame)\n";
   if (!options.output.empty()) out << "wrote " << options.output << "\n";
   if (!options.dump_dir.empty()) out << "dumped AO, position, normal, depth and camera.json to " << options.dump_dir << "\n";
   return 0;

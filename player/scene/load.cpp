@@ -15,6 +15,7 @@ bool load(const std::string& spec, Scene& out, std::string& error, std::ostream&
     const std::string name = spec.substr(kBuiltinPrefix.size());
     if (auto built = make_builtin(name)) {
       out = std::move(*built);
+      recenter_meshes(out);
       return true;
     }
     error = spec + ": no such built-in scene (expected one of:";
@@ -27,6 +28,7 @@ bool load(const std::string& spec, Scene& out, std::string& error, std::ostream&
     error = report.error;
     return false;
   }
+  recenter_meshes(out);
   for (const std::string& warning : report.warnings) log << "warning: " << spec << ": " << warning << "\n";
   return true;
 }

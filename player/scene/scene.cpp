@@ -26,4 +26,20 @@ void update_bounds(Scene& scene) {
   scene.bounds = bounds;
 }
 
+void recenter_meshes(Scene& scene) {
+  std::vector<glm::dvec3> offsets;
+  for (Mesh& mesh : scene.meshes) {
+    const glm::dvec3 centre = (glm::dvec3(mesh.min) + glm::dvec3(mesh.max)) * 0.5;
+    for (Vertex& v : mesh.vertices) v.position = glm::vec3(glm::dvec3(v.position) - centre);
+    mesh.min = glm::vec3(glm::dvec3(mesh.min) - centre);
+    mesh.max = glm::vec3(glm::dvec3(mesh.max) - centre);
+    offsets.push_back(centre);
+  }
+  for (Instance& instance : scene.instances) {
+    const glm::dvec3& c = offsets[static_cast<size_t>(instance.mesh)];
+    instance.world = instance.world * glm::dmat4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, c.x, c.y, c.z, 1);
+  }
+  update_bounds(scene);
+}
+
 }  // namespace scene

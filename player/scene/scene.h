@@ -62,4 +62,9 @@ struct Scene {
 // Recomputes `bounds` from the instances (the transformed corners of each mesh's box).
 void update_bounds(Scene& scene);
 
+// Moves each mesh's vertices so their box is centred on the origin and folds the offset into the
+// instances' double-precision transforms: the GPU then never subtracts two large floats, so a mesh
+// whose coordinates sit far from the origin keeps the precision its file gave it.
+void recenter_meshes(Scene& scene);
+
 }  // namespace scene

@@ -37,21 +37,32 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
 }
 
 #if ESTIMATOR != ESTIMATOR_HORIZON
+// Per-sample arithmetic runs at this precision; AO_MEDIUMP makes it fp16 as embedded GPUs run it.
+#ifdef AO_MEDIUMP
+#define SAMPLE_PRECISION mediump
+#else
+#define SAMPLE_PRECISION highp
+#endif
+
 // The share of kernel points, placed by `basis` at `radius`, that the stored surface hides. A point
 // counts when the surface is in front of it by more than the bias, and that surface lies within the
 // radius of the shaded point in depth: farther occluders are other geometry (no halos).
+// Everything per sample is relative to the shaded point (offsets, depth differences), so at mediump
+// the small quantities keep their precision; only the pixel's own position and projection are highp.
 highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basis, highp float radius, int level) {
-  highp float bias = ssao.radius_4_bias.y * radius;
+  SAMPLE_PRECISION float bias = ssao.radius_4_bias.y * radius;
+  highp vec4 clip_centre = ssao.projection * vec4(position, 1.0);
   int hidden = 0;
   for (int i = 0; i < ssao.counts.x; ++i) {
-    highp vec3 sample_position = position + radius * (basis * ssao.kernel[i].xyz);
-    highp vec4 clip = ssao.projection * vec4(sample_position, 1.0);
+    SAMPLE_PRECISION vec3 offset = radius * (basis * ssao.kernel[i].xyz);
+    highp vec4 clip = clip_centre + ssao.projection * vec4(offset, 0.0);
     if (clip.w <= 0.0) continue;  // behind the eye: nothing on screen can hide it
     ivec2 texel = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(ssao.config.zw)));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
     highp float surface = depth_at(texel, level);
-    highp float sample_depth = -sample_position.z;
-    if (surface > 0.0 && surface < sample_depth - bias && abs(depth - surface) < radius) ++hidden;
+    SAMPLE_PRECISION float surface_offset = surface - depth;  // how far the surface lies behind the point
+    SAMPLE_PRECISION float sample_offset = -offset.z;          // how far the sample lies behind it
+    if (surface > 0.0 && surface_offset < sample_offset - bias && abs(surface_offset) < radius) ++hidden;
   }
   return float(hidden) / float(ssao.counts.x);
 }

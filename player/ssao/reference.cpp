@@ -34,19 +34,24 @@ struct Frame {
     return {(ndc.x + p.unproject.z) * d * p.unproject.x, (ndc.y + p.unproject.w) * d * p.unproject.y, -d};
   }
 
-  float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level) const {
-    const float bias = p.radius_4_bias.y * radius;
+  // `mediump` rounds what ssao.comp declares SAMPLE_PRECISION to half floats, emulating AO_MEDIUMP.
+  float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level, bool mediump) const {
+    const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
+    const float bias = sample_precision(p.radius_4_bias.y * radius);
+    const glm::vec4 clip_centre = p.projection * glm::vec4(position, 1.0f);
     int hidden = 0;
     for (int i = 0; i < p.counts.x; ++i) {
-      const glm::vec3 sample = position + radius * (basis * glm::vec3(p.kernel[i]));
-      const glm::vec4 clip = p.projection * glm::vec4(sample, 1.0f);
+      glm::vec3 offset = radius * (basis * glm::vec3(p.kernel[i]));
+      for (int c = 0; c < 3; ++c) offset[c] = sample_precision(offset[c]);
+      const glm::vec4 clip = clip_centre + p.projection * glm::vec4(offset, 0.0f);
       if (clip.w <= 0.0f) continue;
       const glm::vec2 uv = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(full);
       const glm::ivec2 texel(static_cast<int>(std::floor(uv.x)), static_cast<int>(std::floor(uv.y)));
       if (outside(texel, full)) continue;
       const float surface = depth_at(texel, level);
-      const float sample_depth = -sample.z;
-      if (surface > 0.0f && surface < sample_depth - bias && std::abs(d - surface) < radius) ++hidden;
+      const float surface_offset = sample_precision(surface - d);
+      const float sample_offset = sample_precision(-offset.z);
+      if (surface > 0.0f && surface_offset < sample_offset - bias && std::abs(surface_offset) < radius) ++hidden;
     }
     return static_cast<float>(hidden) / static_cast<float>(p.counts.x);
   }
@@ -142,7 +147,8 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 }
 
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator) {
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
+                                    bool mediump) {
   const Frame frame{depth, params, glm::ivec2(params.config.z, params.config.w)};
   const int width = params.counts.z, height = params.counts.w;
   std::vector<AoTexel> out(static_cast<size_t>(width) * static_cast<size_t>(height), AoTexel(0.0f));
@@ -171,7 +177,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
                               ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
-                              : frame.hidden_share(position, d, basis, radius, level));
+                              : frame.hidden_share(position, d, basis, radius, level, mediump));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));
     }

@@ -21,9 +21,11 @@ struct DepthChain {
 DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, int height);
 
 // AO at the AO resolution of `params` (full or half). `view_normals` are the G-buffer's view-space
-// normals at full resolution (used by the hemisphere and horizon estimators).
+// normals at full resolution (used by the hemisphere and horizon estimators). `mediump` emulates the
+// AO_MEDIUMP variant of the point-sampled estimators by rounding its per-sample values to half floats.
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator);
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
+                                    bool mediump = false);
 std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params,
                                     bool bilateral);
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,

@@ -3,6 +3,7 @@
 // untouched case, and no buffer may hold NaN or infinity.
 #include "harness.h"
 #include "scene/procedural.h"
+#include "ssao/reference.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -202,6 +203,45 @@ TEST_P(Stress, DegenerateGeometryGivesBoundedAoAndNoNaN) {
     ASSERT_TRUE(n.start(GetParam(), std::move(near_only), settings));
     EXPECT_EQ(n.renderer.gl_error(), "");
     expect_all_finite(n, std::string(ssao::name(estimator)) + " near");
+  }
+}
+
+TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
+  // Mesa's llvmpipe computes mediump at 32 bits, so the fp16 variant is emulated on the CPU: the
+  // reference rounds exactly what ssao.comp's AO_MEDIUMP variant declares mediump (the per-sample
+  // offsets and depth differences, all relative to the shaded point) and runs on the G-buffer the GPU
+  // drew. Same bound as the other stress tests. Scenes near the origin and scaled by 1e3.
+  for (double scale : {1.0, 1e3}) {
+    for (ssao::Estimator estimator : {ssao::Estimator::sphere, ssao::Estimator::hemisphere}) {
+      scene::Scene scaled = spheres();
+      for (scene::Instance& instance : scaled.instances)
+        instance.world = glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) * instance.world;
+      scene::update_bounds(scaled);
+      render::FrameSettings settings = stress_settings();
+      settings.ao_settings.estimator = estimator;
+      Harness h;
+      ASSERT_TRUE(h.start("egl", std::move(scaled), settings));
+      const auto depth = h.renderer.read_linear_depth();
+      const auto chain = ssao::build_depth_chain(depth, kSide, kSide);
+      const auto normals = h.renderer.read_view_normals();
+      const auto high = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
+      const auto medium = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
+      double sum = 0.0;
+      size_t objects = 0, off = 0;
+      for (size_t i = 0; i < high.size(); ++i) {
+        if (depth[i] <= 0.0f) continue;
+        const double delta = std::abs(high[i].x - medium[i].x);
+        sum += delta;
+        off += delta > 1.0 / 16.0 + 1e-3 ? 1 : 0;
+        ++objects;
+      }
+      ASSERT_GT(objects, high.size() / 10);
+      const std::string what = std::string(ssao::name(estimator)) + " at scale " + std::to_string(scale);
+      std::cout << "mediump vs highp, " << what << ": mean AO difference " << sum / static_cast<double>(objects)
+                << ", share off by more than a sample " << static_cast<double>(off) / static_cast<double>(objects) << "\n";
+      EXPECT_LE(sum / static_cast<double>(objects), kMeanBound) << what;
+      EXPECT_LE(static_cast<double>(off) / static_cast<double>(objects), kShareBound) << what;
+    }
   }
 }
 

@@ -37,37 +37,24 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
   }
   const int w = options.frame.width, h = options.frame.height;
   const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
-  const std::vector<float> depth = renderer.read_linear_depth();
-  const std::vector<glm::vec3> view_normals = renderer.read_view_normals();
+  const Surface surface = read_surface(renderer, camera);
   // At half resolution the raw AO is smaller; each pixel takes the AO texel of its 2x2 block.
   const std::vector<glm::vec2> ao_raw_low = renderer.read_ao_raw();
+  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_final();
   const int shift = options.frame.ao_settings.half_resolution ? 1 : 0;
   const int low_width = renderer.ssao_params().counts.z;
-  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_final();
-  const glm::dmat4 view = camera.view();
-  const glm::dmat4 projection = camera.projection();
-  const glm::dmat4 inverse_view = glm::inverse(view);
-  std::vector<float> position(count * 4, 0.0f), normal(count * 4, 0.0f), raw(count), blurred(count);
-  for (int y = 0; y < h; ++y) {
+  std::vector<float> raw(count), blurred(count);
+  for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
       raw[i] = ao_raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(low_width) + static_cast<size_t>(x >> shift)].x;
       blurred[i] = ao_blurred[i].x;
-      const double d = depth[i];
-      if (d <= 0.0) continue;  // background: alpha 0 marks it
-      // The same reconstruction as ssao.comp, in double.
-      const double ndc_x = (x + 0.5) / w * 2.0 - 1.0, ndc_y = (y + 0.5) / h * 2.0 - 1.0;
-      const glm::dvec4 view_position((ndc_x + projection[2][0]) * d / projection[0][0],
-                                     (ndc_y + projection[2][1]) * d / projection[1][1], -d, 1.0);
-      const glm::dvec3 world = glm::dvec3(inverse_view * view_position);
-      const glm::dvec3 world_normal = glm::normalize(glm::dmat3(inverse_view) * glm::dvec3(view_normals[i]));
-      for (int c = 0; c < 3; ++c) {
-        position[i * 4 + static_cast<size_t>(c)] = static_cast<float>(world[c]);
-        normal[i * 4 + static_cast<size_t>(c)] = static_cast<float>(world_normal[c]);
-      }
-      position[i * 4 + 3] = normal[i * 4 + 3] = 1.0f;
     }
-  }
+  const glm::dmat4 view = camera.view();
+  const glm::dmat4 projection = camera.projection();
+  const std::vector<float>& depth = surface.depth;
+  const std::vector<float>& position = surface.position;
+  const std::vector<float>& normal = surface.normal;
   const std::string base = dir + "/";
   if (!write_exr(base + "ao_raw.exr", w, h, 1, raw, {"Y"}, error) ||
       !write_exr(base + "ao_blurred.exr", w, h, 1, blurred, {"Y"}, error) ||
@@ -130,6 +117,38 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 }
 
 }  // namespace
+
+Surface read_surface(const render::Renderer& renderer, const scene::Camera& camera) {
+  Surface surface;
+  surface.width = renderer.settings().width;
+  surface.height = renderer.settings().height;
+  const int w = surface.width, h = surface.height;
+  const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
+  surface.depth = renderer.read_linear_depth();
+  const std::vector<glm::vec3> view_normals = renderer.read_view_normals();
+  const glm::dmat4 projection = camera.projection();
+  const glm::dmat4 inverse_view = glm::inverse(camera.view());
+  surface.position.assign(count * 4, 0.0f);
+  surface.normal.assign(count * 4, 0.0f);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      const double d = surface.depth[i];
+      if (d <= 0.0) continue;  // background: alpha 0 marks it
+      const double ndc_x = (x + 0.5) / w * 2.0 - 1.0, ndc_y = (y + 0.5) / h * 2.0 - 1.0;
+      const glm::dvec4 view_position((ndc_x + projection[2][0]) * d / projection[0][0],
+                                     (ndc_y + projection[2][1]) * d / projection[1][1], -d, 1.0);
+      const glm::dvec3 world = glm::dvec3(inverse_view * view_position);
+      const glm::dvec3 world_normal = glm::normalize(glm::dmat3(inverse_view) * glm::dvec3(view_normals[i]));
+      for (int c = 0; c < 3; ++c) {
+        surface.position[i * 4 + static_cast<size_t>(c)] = static_cast<float>(world[c]);
+        surface.normal[i * 4 + static_cast<size_t>(c)] = static_cast<float>(world_normal[c]);
+      }
+      surface.position[i * 4 + 3] = surface.normal[i * 4 + 3] = 1.0f;
+    }
+  }
+  return surface;
+}
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   const auto load_start = std::chrono::steady_clock::now();

@@ -6,6 +6,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace app {
 
@@ -18,6 +19,16 @@ struct RenderOptions {
   scene::Framing framing;
   render::FrameSettings frame;
 };
+
+// The visible surface of the last frame in world space, rows bottom-up (GL order): positions and
+// normals with alpha 1 on objects and 0 on background, and linear depth. Rebuilt from the G-buffer
+// exactly as ssao.comp rebuilds it, in double, so references are computed at the points SSAO saw.
+struct Surface {
+  int width = 0, height = 0;
+  std::vector<float> position, normal;  // 4 channels each
+  std::vector<float> depth;             // 1 channel
+};
+Surface read_surface(const render::Renderer& renderer, const scene::Camera& camera);
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);

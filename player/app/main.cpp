@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
 
   app::RenderOptions render;
   std::string size = "1024x768";
-  std::string ao = "on", prepass = "on";
+  std::string ao = "on", prepass = "auto";
   auto* render_cmd = cli.add_subcommand("render", "Render one frame of SCENE to a PNG and print per-pass GPU times");
   std::string builtins;
   for (const std::string& name : scene::builtin_names()) builtins += " builtin:" + name;
@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
                                                                  {"normal", render::View::normal},
                                                                  {"depth", render::View::depth}})))
       ->default_str("color");
-  render_cmd->add_option("--prepass", prepass, "Depth prepass before the G-buffer")
-      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  render_cmd->add_option("--prepass", prepass, "Depth prepass before the G-buffer: on, off, or auto (measure both, keep the faster)")
+      ->check(CLI::IsMember({"on", "off", "auto"}))->capture_default_str();
   render_cmd->add_option("--platform", render.platform, "GL platform: egl (headless EGL), osmesa, or auto (egl, then osmesa)")
       ->check(CLI::IsMember(platform::names()))->capture_default_str();
   render_cmd->add_option("--frames", render.frames, "Frames to render; times are the median of all but the first")
@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
     render.frame.width = width;
     render.frame.height = height;
     render.frame.ao = ao == "on";
-    render.frame.depth_prepass = prepass == "on";
+    render.frame.prepass = prepass == "on" ? render::Prepass::on : prepass == "off" ? render::Prepass::off : render::Prepass::automatic;
     render.frame.ao_settings.half_resolution = resolution == "half";
     render.frame.ao_settings.depth_chain = depth_chain == "on";
     render.frame.ao_settings.skip_radii = skip_radii == "on";

@@ -221,6 +221,13 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
         << std::setprecision(3) << median << " ms\n";
   }
   out << "  " << std::left << std::setw(16) << "total" << std::right << std::setw(9) << total << " ms\n";
+  if (options.frame.prepass == render::Prepass::automatic) {
+    if (renderer.raster_ms_without_prepass() >= 0.0)
+      out << "depth prepass: auto kept it " << (renderer.prepass_in_use() ? "on" : "off") << " (prepass + g-buffer "
+          << renderer.raster_ms_with_prepass() << " ms, g-buffer alone " << renderer.raster_ms_without_prepass() << " ms)\n";
+    else
+      out << "depth prepass: auto needs two frames to choose (--frames 3 or more)\n";
+  }
   if (reused > 0)
     out << "AO reused on " << reused << " of " << frames << " frames (camera still; --reuse-ao off to time every frame)\n";
   if (!options.output.empty()) out << "wrote " << options.output << "\n";

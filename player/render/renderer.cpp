@@ -57,6 +57,15 @@ std::string_view name(View view) {
   return "?";
 }
 
+std::string_view name(Prepass prepass) {
+  switch (prepass) {
+    case Prepass::off: return "off";
+    case Prepass::on: return "on";
+    case Prepass::automatic: return "auto";
+  }
+  return "?";
+}
+
 std::string_view pass_name(int pass) {
   switch (pass) {
     case kDepthPrepass: return "depth prepass";
@@ -182,6 +191,7 @@ bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   settings_ = settings;
   gl_error_.clear();
   have_ao_ = reused_ao_ = false;
+  raster_with_ = raster_without_ = -1.0;
   const int w = settings.width, h = settings.height;
   std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(settings.ao_settings.estimator)) + "\n";
   ssao_ = gl::build_program({{GL_COMPUTE_SHADER, "ssao.comp"}}, defines, error);
@@ -301,7 +311,14 @@ void Renderer::render(const scene::Camera& camera) {
   gl::api.DepthMask(GL_TRUE);
   gl::api.ClearBufferfv(GL_DEPTH, 0, &one);
 
-  if (settings_.depth_prepass) {
+  switch (settings_.prepass) {
+    case Prepass::on: prepass_now_ = true; break;
+    case Prepass::off: prepass_now_ = false; break;
+    case Prepass::automatic:  // first frame with, second without, then the faster of the two
+      prepass_now_ = raster_with_ < 0.0 ? true : raster_without_ < 0.0 ? false : raster_with_ <= raster_without_;
+      break;
+  }
+  if (prepass_now_) {
     gl::api.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl::api.DepthFunc(GL_LESS);
     draw_scene(true, view, projection);
@@ -427,6 +444,10 @@ PassTimes Renderer::collect_times() {
   const auto ms = timer_.collect();
   for (int pass = 0; pass < kPassCount; ++pass) times.ms[static_cast<size_t>(pass)] = ms[static_cast<size_t>(pass)];
   times.gpu_timed = timer_.gpu_timed();
+  if (settings_.prepass == Prepass::automatic && (raster_with_ < 0.0 || raster_without_ < 0.0)) {
+    const double raster = std::max(0.0, times.ms[kDepthPrepass]) + std::max(0.0, times.ms[kGBuffer]);
+    (prepass_now_ ? raster_with_ : raster_without_) = raster;
+  }
   return times;
 }
 

@@ -16,6 +16,11 @@
 namespace render {
 
 enum class View { color, ao, normal, depth };
+
+// The depth prepass pays only where overdraw is high enough that shading fragments twice costs more
+// than drawing the geometry twice; `automatic` measures both on the first two frames and keeps the faster.
+enum class Prepass { off, on, automatic };
+std::string_view name(Prepass prepass);
 std::string_view name(View view);
 
 struct FrameSettings {
@@ -25,7 +30,7 @@ struct FrameSettings {
   ssao::BlurSettings blur;
   float radius = 0.0f;        // base AO radius in world units; 0: a tenth of the scene's bounding radius
   View view = View::color;
-  bool depth_prepass = true;
+  Prepass prepass = Prepass::automatic;
   bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
   bool check_errors = false;    // glGetError after each pass (tests, debug runs)
 };
@@ -70,6 +75,11 @@ class Renderer {
   const shared_layout::BlurParams& blur_params(int direction) const { return blur_params_[direction]; }
   const shared_layout::UpsampleParams& upsample_params() const { return upsample_params_; }
   bool reused_ao() const { return reused_ao_; }  // the last frame kept the AO of the one before
+  // With Prepass::automatic: whether the prepass is in use, and the raster times (prepass + G-buffer,
+  // G-buffer alone) it was chosen by; negative until both were measured.
+  bool prepass_in_use() const { return prepass_now_; }
+  double raster_ms_with_prepass() const { return raster_with_; }
+  double raster_ms_without_prepass() const { return raster_without_; }
   float base_radius() const { return base_radius_; }
   float inverse_far() const { return inverse_far_; }
   const FrameSettings& settings() const { return settings_; }
@@ -122,6 +132,8 @@ class Renderer {
   float base_radius_ = 0.0f, inverse_far_ = 0.0f;
   glm::dmat4 last_view_{0.0}, last_projection_{0.0};
   bool have_ao_ = false, reused_ao_ = false;
+  bool prepass_now_ = true;
+  double raster_with_ = -1.0, raster_without_ = -1.0;
 };
 
 }  // namespace render

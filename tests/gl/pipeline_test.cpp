@@ -186,7 +186,7 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
           render::FrameSettings settings = small_settings();
           settings.width = 48;
           settings.height = 32;
-          settings.depth_prepass = prepass;
+          settings.prepass = prepass ? render::Prepass::on : render::Prepass::off;
           settings.ao = ao;
           settings.blur.mode = blur;
           settings.view = view;
@@ -204,7 +204,8 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
 
 TEST_P(Pipeline, DepthPrepassDoesNotChangeThePicture) {
   render::FrameSettings with = small_settings(), without = small_settings();
-  without.depth_prepass = false;
+  with.prepass = render::Prepass::on;
+  without.prepass = render::Prepass::off;
   std::vector<uint8_t> picture;
   {
     Harness a;
@@ -214,6 +215,26 @@ TEST_P(Pipeline, DepthPrepassDoesNotChangeThePicture) {
   Harness b;
   ASSERT_TRUE(b.start(GetParam(), "builtin:demo", without));
   EXPECT_EQ(picture, b.renderer.read_color());
+}
+
+TEST_P(Pipeline, AutomaticPrepassMeasuresBothAndKeepsTheFaster) {
+  render::FrameSettings settings = small_settings();
+  settings.prepass = render::Prepass::automatic;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+  const render::PassTimes first = h.renderer.collect_times();
+  EXPECT_GE(first.ms[render::kDepthPrepass], 0.0);  // the first frame tries the prepass
+  h.renderer.render(h.camera);
+  const render::PassTimes second = h.renderer.collect_times();
+  EXPECT_LT(second.ms[render::kDepthPrepass], 0.0);  // the second does without
+  ASSERT_GE(h.renderer.raster_ms_with_prepass(), 0.0);
+  ASSERT_GE(h.renderer.raster_ms_without_prepass(), 0.0);
+  h.renderer.render(h.camera);
+  const render::PassTimes third = h.renderer.collect_times();
+  const bool keep = h.renderer.raster_ms_with_prepass() <= h.renderer.raster_ms_without_prepass();
+  EXPECT_EQ(h.renderer.prepass_in_use(), keep);
+  EXPECT_EQ(third.ms[render::kDepthPrepass] >= 0.0, keep);
+  EXPECT_EQ(h.renderer.gl_error(), "");
 }
 
 TEST_P(Pipeline, SharedSceneWithoutNormalsRendersWithFiniteNormals) {

@@ -1,0 +1,295 @@
+// aobench: AO run time against error. For each scene and view it renders the G-buffer once, traces
+// the two references at exactly those surface points (aoref), then renders every configuration,
+// timing its AO passes with GPU timer queries and measuring its error against the matching reference.
+// Writes a CSV (a row per scene, view and configuration) and a PNG chart with the Pareto front.
+#include "aoref/metrics.h"
+#include "aoref/ray_scene.h"
+#include "aoref/reference.h"
+#include "app/render_command.h"
+#include "chart.h"
+#include "configs.h"
+#include "gl/caps.h"
+#include "platform/platform.h"
+#include "scene/load.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::vector<std::string> scenes;
+  std::string size = "1024x768";
+  int frames = 5;
+  int views = 3;
+  int rays = 256;
+  std::vector<std::string> configs;
+  std::string sweep;  // "", "quick", "full" or "ablation"
+  std::string platform = "auto";
+  std::string csv = "out/aobench.csv";
+  std::string chart = "out/aobench.png";
+};
+
+// Converts a bottom-up (GL) image to the top-down layout of aoref images.
+aoref::Image top_down(const std::vector<float>& values, int width, int height, int channels) {
+  aoref::Image image(width, height, channels);
+  const size_t row = static_cast<size_t>(width) * static_cast<size_t>(channels);
+  for (int y = 0; y < height; ++y)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(row * static_cast<size_t>(height - 1 - y)), row,
+                image.values.begin() + static_cast<std::ptrdiff_t>(row * static_cast<size_t>(y)));
+  return image;
+}
+
+aoref::Image ao_image(const std::vector<glm::vec2>& ao, int width, int height, bool sphere_to_hemisphere) {
+  std::vector<float> values(ao.size());
+  // The sphere estimator counts the half of its sphere below a plane as hidden: 0.5 on an open face.
+  // Against the hemisphere reference its value maps to the hidden share of the upper half, 2f - 1.
+  for (size_t i = 0; i < ao.size(); ++i)
+    values[i] = sphere_to_hemisphere ? std::clamp(2.0f * ao[i].x - 1.0f, 0.0f, 1.0f) : ao[i].x;
+  return top_down(values, width, height, 1);
+}
+
+aoref::Image merge_radii(const aoref::ReferenceResult& sphere, int radii) {
+  aoref::Image merged = sphere.per_radius.at(0);
+  for (int k = 1; k < radii && k < static_cast<int>(sphere.per_radius.size()); ++k)
+    for (size_t i = 0; i < merged.values.size(); ++i)
+      merged.values[i] = std::max(merged.values[i], sphere.per_radius[static_cast<size_t>(k)].values[i]);
+  return merged;
+}
+
+void progress_bar(const std::string& what, int done, int total) {
+  if (!isatty(STDERR_FILENO)) return;
+  const int width = 30, filled = total > 0 ? done * width / total : width;
+  std::cerr << "\r  " << what << " [" << std::string(static_cast<size_t>(filled), '#')
+            << std::string(static_cast<size_t>(width - filled), '.') << "] " << done << "/" << total << std::flush;
+  if (done >= total) std::cerr << "\n";
+}
+
+struct Row {
+  std::string scene;
+  int view = 0;
+  const aobench::Config* config = nullptr;
+  double time_ms = 0.0;
+  aoref::Metrics own, near_field;
+  std::string reference;
+};
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App cli{"aobench: AO run time against error over scenes, views and configurations"};
+  cli.add_option("--scene", options.scenes, "Scenes (.gltf/.glb or builtin:NAME); default: builtin:demo and ../shared/scenes/*.glb");
+  cli.add_option("--size", options.size, "Image size WxH")->capture_default_str();
+  cli.add_option("--frames", options.frames, "Timed frames per configuration (after one warm-up)")->check(CLI::Range(1, 1000))->capture_default_str();
+  cli.add_option("--views", options.views, "Views per scene (azimuths spread round the scene)")->check(CLI::Range(1, 12))->capture_default_str();
+  cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")->check(CLI::Range(8, 1 << 16))->capture_default_str();
+  cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see README); default: paper and default");
+  cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each skip turned off)")
+      ->check(CLI::IsMember({"quick", "full", "ablation"}));
+  cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")->check(CLI::IsMember(platform::names()))->capture_default_str();
+  cli.add_option("-o,--csv", options.csv, "CSV output")->capture_default_str();
+  cli.add_option("--chart", options.chart, "PNG chart output")->capture_default_str();
+  CLI11_PARSE(cli, argc, argv);
+
+  int width = 0, height = 0;
+  char separator = 0;
+  std::istringstream size_text(options.size);
+  if (!(size_text >> width >> separator >> height) || separator != 'x' || width < 8 || height < 8) {
+    std::cerr << "error: --size: '" << options.size << "' is not WxH (e.g. 1024x768)\n";
+    return 2;
+  }
+  if (options.scenes.empty()) {
+    options.scenes.push_back("builtin:demo");
+    std::vector<std::string> shared;
+    if (fs::is_directory("../shared/scenes"))
+      for (const auto& entry : fs::directory_iterator("../shared/scenes"))
+        if (entry.path().extension() == ".glb") shared.push_back(entry.path().string());
+    std::sort(shared.begin(), shared.end());
+    options.scenes.insert(options.scenes.end(), shared.begin(), shared.end());
+  }
+
+  std::vector<aobench::Config> configs;
+  std::string error;
+  if (options.configs.empty() && options.sweep != "ablation") options.configs = {"paper", "default"};
+  for (const std::string& text : options.configs) {
+    auto config = aobench::parse_config(text, error);
+    if (!config) {
+      std::cerr << "error: " << error << "\n";
+      return 2;
+    }
+    configs.push_back(*config);
+  }
+  if (options.sweep == "ablation") {
+    for (const char* spec : {"default", "chain=off", "skip=off", "scale=full", "scale=half"}) configs.push_back(*aobench::parse_config(spec, error));
+    configs[0].name = "default";
+  } else if (!options.sweep.empty()) {
+    auto grid = aobench::sweep(options.sweep);
+    configs.insert(configs.end(), grid.begin(), grid.end());
+  }
+  for (aobench::Config& config : configs) {
+    config.settings.width = width;
+    config.settings.height = height;
+  }
+
+  auto platform = platform::create({options.platform, false}, error);
+  if (!platform) {
+    std::cerr << "error: " << error << "\n";
+    return 1;
+  }
+  const gl::Caps caps = gl::query_caps();
+  std::cout << "aobench: " << configs.size() << " configurations x " << options.scenes.size() << " scenes x " << options.views
+            << " views at " << width << "x" << height << " on " << platform->name() << " (" << caps.renderer << ")"
+            << (caps.timer_query ? ", GPU timer queries" : ", CPU clock around glFinish") << "\n";
+
+  fs::create_directories(fs::path(options.csv).parent_path().empty() ? "." : fs::path(options.csv).parent_path());
+  std::ofstream csv(options.csv);
+  if (!csv) {
+    std::cerr << "error: " << options.csv << ": cannot write\n";
+    return 1;
+  }
+  csv << "scene,view,config,estimator,samples,radii,pattern,blur,scale,chain,skip,time_ms,reference,mae,rmse,ssim,edge_mae,"
+         "mae_near_field,rmse_near_field,ssim_near_field\n";
+  std::vector<Row> rows;
+
+  for (const std::string& scene_spec : options.scenes) {
+    scene::Scene scene;
+    if (!scene::load(scene_spec, scene, error, std::cerr)) {
+      std::cerr << "error: " << error << "\n";
+      return 1;
+    }
+    aoref::RayScene rays;
+    if (!rays.build(scene, error)) {
+      std::cerr << "error: " << scene_spec << ": " << error << "\n";
+      return 1;
+    }
+    render::Renderer renderer;
+    render::FrameSettings base = configs.front().settings;
+    if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(base, error)) {
+      std::cerr << "error: " << scene_spec << ": " << error << "\n";
+      return 1;
+    }
+    for (int view_index = 0; view_index < options.views; ++view_index) {
+      scene::Framing framing;
+      framing.azimuth_deg = 30.0 + 360.0 * view_index / options.views;
+      framing.elevation_deg = 25.0;
+      const scene::Camera camera = scene::frame(scene.bounds, framing, width, height);
+      renderer.render(camera);
+      const app::Surface surface = app::read_surface(renderer, camera);
+      aoref::View view;
+      view.eye = camera.eye;
+      for (int k = 0; k < SSAO_MAX_RADII; ++k) view.radii.push_back(renderer.base_radius() * std::ldexp(1.0, -k));
+      view.position = top_down(surface.position, width, height, 4);
+      view.normal = top_down(surface.normal, width, height, 4);
+      const aoref::Image depth = top_down(surface.depth, width, height, 1);
+      std::cout << scene_spec << ", view " << view_index << ": tracing references (" << options.rays << " rays per pixel)\n";
+      aoref::ReferenceSettings reference_settings;
+      reference_settings.rays = options.rays;
+      reference_settings.progress = [](int done, int total) { progress_bar("rows", done, total); };
+      aoref::ReferenceResult near_field, sphere;
+      reference_settings.reference = aoref::Reference::near_field;
+      if (!aoref::compute_reference(rays, view, reference_settings, near_field, error)) {
+        std::cerr << "error: " << error << "\n";
+        return 1;
+      }
+      reference_settings.reference = aoref::Reference::sphere;
+      if (!aoref::compute_reference(rays, view, reference_settings, sphere, error)) {
+        std::cerr << "error: " << error << "\n";
+        return 1;
+      }
+      std::cout << "  reference noise: near-field mean standard error " << near_field.mean_standard_error << " (max "
+                << near_field.max_standard_error << "), sphere " << sphere.mean_standard_error << " (max "
+                << sphere.max_standard_error << ")\n";
+      for (size_t c = 0; c < configs.size(); ++c) {
+        const aobench::Config& config = configs[c];
+        if (!renderer.configure(config.settings, error)) {
+          std::cerr << "error: " << config.name << ": " << error << "\n";
+          return 1;
+        }
+        std::vector<double> times;
+        for (int frame = 0; frame <= options.frames; ++frame) {
+          renderer.render(camera);
+          const render::PassTimes pass = renderer.collect_times();
+          double ao_ms = 0.0;
+          for (int p : {render::kDepthChain, render::kSsao, render::kBlurH, render::kBlurV, render::kUpsample})
+            ao_ms += std::max(0.0, pass.ms[static_cast<size_t>(p)]);
+          if (frame > 0) times.push_back(ao_ms);
+        }
+        const bool is_sphere = config.settings.ao_settings.estimator == ssao::Estimator::sphere;
+        const auto estimate = renderer.read_ao_final();
+        Row row;
+        row.scene = scene_spec;
+        row.view = view_index;
+        row.config = &config;
+        row.time_ms = median(times);
+        row.reference = is_sphere ? "sphere" : "near-field";
+        row.own = aoref::compare(ao_image(estimate, width, height, false),
+                                 is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
+        row.near_field = aoref::compare(ao_image(estimate, width, height, is_sphere), near_field.ao, depth);
+        const auto& s = config.settings;
+        csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"," << ssao::name(s.ao_settings.estimator)
+            << ',' << s.ao_settings.samples << ',' << s.ao_settings.radii << ',' << ssao::name(s.ao_settings.pattern) << ','
+            << ssao::name(s.blur.mode) << ',' << (s.ao_settings.half_resolution ? "half" : "full") << ','
+            << (s.ao_settings.depth_chain ? "on" : "off") << ',' << (s.ao_settings.skip_radii ? "on" : "off") << ','
+            << row.time_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
+            << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << "\n";
+        rows.push_back(row);
+        progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));
+      }
+    }
+  }
+  csv.close();
+
+  // Aggregate each configuration over scenes and views: mean time, mean error against the
+  // near-field reference (the one every estimator can be judged by).
+  std::map<const aobench::Config*, std::pair<double, double>> totals;
+  std::map<const aobench::Config*, double> own_totals;
+  std::map<const aobench::Config*, int> counts;
+  for (const Row& row : rows) {
+    totals[row.config].first += row.time_ms;
+    totals[row.config].second += row.near_field.mae;
+    own_totals[row.config] += row.own.mae;
+    ++counts[row.config];
+  }
+  std::vector<aobench::ChartPoint> points;
+  std::vector<const aobench::Config*> order;
+  for (const aobench::Config& config : configs) {
+    const int n = std::max(counts[&config], 1);
+    aobench::ChartPoint point{totals[&config].first / n, totals[&config].second / n, false,
+                              config.name == "paper" || config.name == "default" ? config.name : ""};
+    points.push_back(point);
+    order.push_back(&config);
+  }
+  for (size_t i : aobench::pareto_front(points)) points[i].on_front = true;
+  std::cout << "\nmean over " << options.scenes.size() * static_cast<size_t>(options.views)
+            << " scene views (error: MAE against the near-field reference; own: against the estimator's own reference)\n";
+  std::cout << std::left << std::setw(12) << "time ms" << std::setw(12) << "MAE" << std::setw(12) << "own MAE" << "configuration\n";
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].on_front && points[i].mark.empty() && configs.size() > 40) continue;
+    std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12) << points[i].error
+              << std::setw(12) << own_totals[order[i]] / std::max(counts[order[i]], 1) << order[i]->name
+              << (points[i].on_front ? "  [front]" : "") << (points[i].mark.empty() ? "" : "  <- " + points[i].mark) << "\n";
+  }
+  if (!aobench::write_chart(options.chart, points, "aobench " + options.size, "MAE vs near-field reference", error)) {
+    std::cerr << "error: " << error << "\n";
+    return 1;
+  }
+  std::cout << "wrote " << options.csv << " and " << options.chart << "\n";
+  return 0;
+}

@@ -1,4 +1,6 @@
-// One separable blur pass; the direction is a parameter so one shader serves both passes.
+// One separable blur pass; the direction is a parameter so one shader serves both passes. Each
+// work group blurs a run of BLUR_GROUP_SIZE pixels along the direction and first copies the run and
+// its apron into shared memory, so every texel is fetched about once rather than 2 * radius + 1 times.
 // BILATERAL weights each tap by depth similarity so AO does not bleed across depth edges.
 #include "common.glsl"
 #include "shared_layout.glsl"
@@ -9,31 +11,46 @@ layout(std140, binding = BINDING_BLUR_PARAMS) uniform BlurBlock { BlurParams blu
 uniform highp sampler2D u_source;  // r: AO, g: depth / far (0 for background)
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
 
+shared highp vec2 run[BLUR_GROUP_SIZE + 2 * BLUR_MAX_RADIUS];
+
 void main() {
   ivec2 size = blur.config.zw;
-  ivec2 pixel = blur.config.y == 0 ? ivec2(gl_GlobalInvocationID.xy) : ivec2(gl_GlobalInvocationID.yx);
-  if (pixel.x >= size.x || pixel.y >= size.y) return;
-  vec4 centre = texelFetch(u_source, pixel, 0);
-  if (centre.g <= 0.0) {  // background stays empty
-    imageStore(u_target, pixel, centre);
+  bool vertical = blur.config.y != 0;
+  int length_along = vertical ? size.y : size.x;
+  int line = int(gl_WorkGroupID.y);  // the row (horizontal pass) or column (vertical pass)
+  int first = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE - blur.config.x;
+  int local = int(gl_LocalInvocationID.x);
+  // Fill the run and its apron of `radius` texels each side; edges repeat the last texel, as the
+  // clamped taps of a per-pixel blur would.
+  for (int i = local; i < BLUR_GROUP_SIZE + 2 * blur.config.x; i += BLUR_GROUP_SIZE) {
+    int along = clamp(first + i, 0, length_along - 1);
+    ivec2 texel = vertical ? ivec2(line, along) : ivec2(along, line);
+    run[i] = texelFetch(u_source, texel, 0).rg;
+  }
+  barrier();
+  int along = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE + local;
+  if (along >= length_along) return;
+  ivec2 pixel = vertical ? ivec2(line, along) : ivec2(along, line);
+  int centre_index = local + blur.config.x;
+  highp vec2 centre = run[centre_index];
+  if (centre.y <= 0.0) {  // background stays empty
+    imageStore(u_target, pixel, vec4(centre, 0.0, 0.0));
     return;
   }
-  ivec2 step_dir = blur.config.y == 0 ? ivec2(1, 0) : ivec2(0, 1);
-  float sum = centre.r * blur.weights[0].x;
+  float sum = centre.x * blur.weights[0].x;
   float total = blur.weights[0].x;
   for (int i = 1; i <= blur.config.x; ++i) {
     for (int side = -1; side <= 1; side += 2) {
-      ivec2 tap = clamp(pixel + side * i * step_dir, ivec2(0), size - 1);
-      vec4 value = texelFetch(u_source, tap, 0);
+      highp vec2 value = run[centre_index + side * i];
       float weight = blur.weights[i].x;
 #ifdef BILATERAL
-      float tolerance = blur.bilateral.x * centre.g;
-      float difference = (value.g - centre.g) / tolerance;
-      weight *= value.g > 0.0 ? exp(-difference * difference) : 0.0;
+      float tolerance = blur.bilateral.x * centre.y;
+      float difference = (value.y - centre.y) / tolerance;
+      weight *= value.y > 0.0 ? exp(-difference * difference) : 0.0;
 #endif
-      sum += value.r * weight;
+      sum += value.x * weight;
       total += weight;
     }
   }
-  imageStore(u_target, pixel, vec4(sum / total, centre.g, 0.0, 0.0));
+  imageStore(u_target, pixel, vec4(sum / total, centre.y, 0.0, 0.0));
 }

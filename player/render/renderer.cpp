@@ -390,7 +390,7 @@ void Renderer::render(const scene::Camera& camera) {
         gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_BLUR_PARAMS, blur_ubo_[direction].id());
         bind_texture(0, *sources[direction]);
         gl::api.BindImageTexture(0, targets[direction]->id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        // Threads run along the blur direction: x for the horizontal pass, y for the vertical.
+        // A work group per run of pixels along the blur direction: x counts runs, y counts lines.
         if (direction == 0) gl::api.DispatchCompute(groups(ao_w, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_h), 1);
         else gl::api.DispatchCompute(groups(ao_h, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_w), 1);
         gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -9,6 +9,10 @@
 #include <numeric>
 
 namespace aobench {
+namespace {
+// Debian's fonts-dejavu-core (installed with the project's packages); without it the chart has no labels.
+constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+}  // namespace
 
 std::vector<size_t> pareto_front(const std::vector<ChartPoint>& points) {
   std::vector<size_t> front;
@@ -57,7 +61,7 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
       OIIO::ImageBufAlgo::render_line(chart, x, kTop, x, kHeight - kBottom, grid);
       char label[32];
       std::snprintf(label, sizeof label, "%g", t);
-      OIIO::ImageBufAlgo::render_text(chart, x - 12, kHeight - kBottom + 24, label, 16, "", axis);
+      OIIO::ImageBufAlgo::render_text(chart, x - 12, kHeight - kBottom + 24, label, 16, kFont, axis);
     }
   for (int step = 0; step <= 5; ++step) {
     const double e = e_max * step / 5.0;
@@ -65,12 +69,12 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
     OIIO::ImageBufAlgo::render_line(chart, kLeft, y, kWidth - kRight, y, grid);
     char label[32];
     std::snprintf(label, sizeof label, "%.3f", e);
-    OIIO::ImageBufAlgo::render_text(chart, 20, y + 6, label, 16, "", axis);
+    OIIO::ImageBufAlgo::render_text(chart, 20, y + 6, label, 16, kFont, axis);
   }
   OIIO::ImageBufAlgo::render_line(chart, kLeft, kHeight - kBottom, kWidth - kRight, kHeight - kBottom, axis);
   OIIO::ImageBufAlgo::render_line(chart, kLeft, kTop, kLeft, kHeight - kBottom, axis);
-  OIIO::ImageBufAlgo::render_text(chart, kWidth / 2 - 160, kHeight - 30, "AO time per frame, ms (log scale)", 20, "", axis);
-  OIIO::ImageBufAlgo::render_text(chart, kLeft, 40, title + "   y: " + error_label, 20, "", axis);
+  OIIO::ImageBufAlgo::render_text(chart, kWidth / 2 - 160, kHeight - 30, "AO time per frame, ms (log scale)", 20, kFont, axis);
+  OIIO::ImageBufAlgo::render_text(chart, kLeft, 40, title + "   y: " + error_label, 20, kFont, axis);
 
   const float dot[3] = {0.55f, 0.55f, 0.6f}, front[3] = {0.1f, 0.35f, 0.85f};
   for (const ChartPoint& p : points) OIIO::ImageBufAlgo::render_box(chart, x_of(p.time_ms) - 2, y_of(p.error) - 2,
@@ -89,7 +93,7 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
     const int x = x_of(p.time_ms), y = y_of(p.error);
     OIIO::ImageBufAlgo::render_box(chart, x - 8, y - 8, x + 8, y + 8, marked, false);
     OIIO::ImageBufAlgo::render_box(chart, x - 7, y - 7, x + 7, y + 7, marked, false);
-    OIIO::ImageBufAlgo::render_text(chart, x + 12, y - 10, p.mark, 18, "", marked);
+    OIIO::ImageBufAlgo::render_text(chart, x + 12, y - 10, p.mark, 18, kFont, marked);
   }
   if (!chart.write(path)) {
     error = path + ": cannot write the chart (" + chart.geterror() + ")";

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(choices<ssao::Estimator>({{"sphere", ssao::Estimator::sphere},
                                                                     {"hemisphere", ssao::Estimator::hemisphere},
                                                                     {"horizon", ssao::Estimator::horizon}})))
-      ->default_str("sphere");
+      ->default_str("hemisphere");
   std::string resolution = "full", depth_chain = "on", skip_radii = "on", reuse_ao = "on";
   render_cmd->add_option("--reuse-ao", reuse_ao, "Keep the last frame's AO while camera and scene stand still (off: recompute every frame, for timing)")
       ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(choices<ssao::Blur>({{"gaussian", ssao::Blur::gaussian},
                                                                {"bilateral", ssao::Blur::bilateral},
                                                                {"off", ssao::Blur::off}})))
-      ->default_str("gaussian");
+      ->default_str("off");
   render_cmd->add_option("--view", render.frame.view, "What to show")
       ->transform(CLI::CheckedTransformer(choices<render::View>({{"color", render::View::color},
                                                                  {"ao", render::View::ao},

@@ -125,6 +125,8 @@ TEST_P(Pipeline, BackgroundPixelsGetNoOcclusion) {
 TEST_P(Pipeline, PlaneFacingTheCameraGetsTheEstimatorsPlaneValue) {
   for (int samples : {8, 16, 32}) {
     render::FrameSettings settings = small_settings();
+    settings.ao_settings.estimator = ssao::Estimator::sphere;
+    settings.ao_settings.radii = 5;
     settings.ao_settings.samples = samples;
     settings.blur.mode = ssao::Blur::off;
     scene::Framing head_on;

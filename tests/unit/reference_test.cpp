@@ -39,6 +39,8 @@ class ReferenceOnPlane : public ::testing::TestWithParam<ssao::Pattern> {};
 
 TEST_P(ReferenceOnPlane, FacingPlaneGetsThePredictedValueAndBackgroundGetsZero) {
   ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::sphere;
+  settings.radii = 5;
   settings.pattern = GetParam();
   settings.samples = 16;
   settings.depth_chain = false;
@@ -67,6 +69,7 @@ TEST(Reference, StepEdgeOccludesTheLowerSideOnly) {
   // Left half of the image is a plane at depth 5, right half a plane at depth 4.8 (closer): the step's
   // foot (far side, next to the closer wall) gains occlusion; the top of the step does not.
   ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::sphere;
   settings.samples = 32;
   settings.radii = 1;
   const auto params = params_for(settings, 0.4f);
@@ -83,6 +86,8 @@ TEST(Reference, RangeCheckIgnoresFarOccluders) {
   // A plane at depth 5 with a near object at depth 1 covering the right half: the object is 4 units
   // in front, beyond every radius, so the plane next to it keeps the flat value (no halo).
   ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::sphere;
+  settings.radii = 5;
   settings.samples = 16;
   const auto params = params_for(settings, 0.3f);
   std::vector<float> image(kSize * kSize);
@@ -165,6 +170,8 @@ TEST(Reference, UpsamplingTakesTheLowResolutionTexelOfTheClosestDepth) {
 
 TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
   ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::sphere;
+  settings.radii = 5;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 200.0f);
   // Radii 8, 4, 2, 1, 0.5 in a scene of radius 1.5 seen from 100 units on a 64-pixel image (77 pixels
   // per unit at depth 1): 8 and 4 exceed the scene's diameter (3); at depth 98.5, radius 1 spans
@@ -198,6 +205,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) image[static_cast<size_t>(y * kSize + x)] = 5.0f + 0.02f * static_cast<float>(x);
   ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::sphere;
   settings.radii = 1;
   settings.depth_chain = false;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
@@ -228,6 +236,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
 
 TEST(Frame, LargeRadiiReadCoarserDepthLevels) {
   ssao::AoSettings settings;
+  settings.radii = 5;
   auto params = ssao::make_ssao_params(settings, 2.0f, 1024, 768);
   ssao::FrameView view;
   view.projection = glm::perspective(glm::radians(45.0f), 4.0f / 3.0f, 0.5f, 50.0f);

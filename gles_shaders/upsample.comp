@@ -18,12 +18,15 @@ void main() {
     imageStore(u_target, pixel, vec4(0.0));
     return;
   }
+  // Low-resolution texel i shaded full-resolution pixel 2i; the candidates are the 2x2 texels whose
+  // pixels surround this one: its own block and the neighbours on the side the pixel lies towards.
   ivec2 base = pixel >> 1;
+  ivec2 toward = ivec2((pixel.x & 1) == 1 ? 1 : -1, (pixel.y & 1) == 1 ? 1 : -1);
   highp float best_difference = 1e30;
   highp float best_ao = 0.0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 texel = clamp(base + ivec2(dx, dy), ivec2(0), upsample.config.zw - 1);
+  for (int dy = 0; dy < 2; ++dy)
+    for (int dx = 0; dx < 2; ++dx) {
+      ivec2 texel = clamp(base + ivec2(dx, dy) * toward, ivec2(0), upsample.config.zw - 1);
       highp vec4 value = texelFetch(u_ao, texel, 0);
       if (value.g <= 0.0) continue;
       highp float difference = abs(value.g - depth);

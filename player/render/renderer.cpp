@@ -353,10 +353,14 @@ void Renderer::render(const scene::Camera& camera) {
     frame_view.scene_radius = static_cast<float>(scene_radius_);
     ssao::update_for_frame(ssao_params_, settings_.ao_settings, frame_view);
 
-    if (settings_.ao_settings.depth_chain) {
+    // Levels are only built when some radius in use reads one.
+    int deepest = 0;
+    for (int k = ssao_params_.radius_range.x; k < ssao_params_.radius_range.y; ++k)
+      deepest = std::max(deepest, k < 4 ? ssao_params_.lods_0_3[k] : ssao_params_.config.x);
+    if (deepest > 0) {
       gl::api.UseProgram(depth_chain_.id());
       bind_texture(0, linear_depth_);
-      for (int level = 1; level < depth_levels_; ++level) {
+      for (int level = 1; level <= deepest; ++level) {
         gl::api.Uniform1i(depth_chain_source_level_, level - 1);
         gl::api.BindImageTexture(0, linear_depth_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
         gl::api.DispatchCompute(groups(std::max(w >> level, 1), SSAO_GROUP_SIZE),

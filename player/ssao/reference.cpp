@@ -230,9 +230,10 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
       const float depth = linear_depth[index({x, y}, full.x)] * params.depth.x;
       if (depth <= 0.0f) continue;
       float best_difference = 1e30f, best_ao = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const glm::ivec2 texel = glm::clamp(glm::ivec2((x >> 1) + dx, (y >> 1) + dy), glm::ivec2(0), small - 1);
+      const glm::ivec2 toward((x & 1) == 1 ? 1 : -1, (y & 1) == 1 ? 1 : -1);
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const glm::ivec2 texel = glm::clamp(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy) * toward, glm::ivec2(0), small - 1);
           const AoTexel value = low[index(texel, small.x)];
           if (value.y <= 0.0f) continue;
           const float difference = std::abs(value.y - depth);

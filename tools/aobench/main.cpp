@@ -138,7 +138,6 @@ int main(int argc, char** argv) {
   }
   if (options.sweep == "ablation") {
     for (const char* spec : {"default", "chain=off", "skip=off", "scale=full", "scale=half"}) configs.push_back(*aobench::parse_config(spec, error));
-    configs[0].name = "default";
   } else if (!options.sweep.empty()) {
     auto grid = aobench::sweep(options.sweep);
     configs.insert(configs.end(), grid.begin(), grid.end());

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
                                                                     {"hemisphere", ssao::Estimator::hemisphere},
                                                                     {"horizon", ssao::Estimator::horizon}})))
       ->default_str("hemisphere");
-  std::string resolution = "full", depth_chain = "on", skip_radii = "on", reuse_ao = "on";
+  std::string resolution = "full", depth_chain = "off", skip_radii = "on", reuse_ao = "on";
   render_cmd->add_option("--reuse-ao", reuse_ao, "Keep the last frame's AO while camera and scene stand still (off: recompute every frame, for timing)")
       ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
   render_cmd->add_option("--resolution", resolution, "AO resolution: full, or half with depth-aware upsampling")

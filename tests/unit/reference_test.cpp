@@ -237,6 +237,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
 TEST(Frame, LargeRadiiReadCoarserDepthLevels) {
   ssao::AoSettings settings;
   settings.radii = 5;
+  settings.depth_chain = true;
   auto params = ssao::make_ssao_params(settings, 2.0f, 1024, 768);
   ssao::FrameView view;
   view.projection = glm::perspective(glm::radians(45.0f), 4.0f / 3.0f, 0.5f, 50.0f);

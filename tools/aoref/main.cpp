@@ -122,6 +122,9 @@ int main(int argc, char** argv) try {
               std::string(aoref::name(settings.reference)).c_str(), settings.rays,
               settings.reference == aoref::Reference::sphere ? (" per radius x " + std::to_string(dump.view.radii.size())).c_str() : "",
               static_cast<double>(result.rays_traced), seconds, seconds > 0.0 ? static_cast<double>(result.rays_traced) / seconds : 0.0);
+  double ao_sum = 0.0;
+  for (size_t i = 0; i < result.ao.pixel_count(); ++i) ao_sum += result.ao.at(i);
+  std::printf("mean AO over object pixels %.4f\n", result.object_pixels ? ao_sum / static_cast<double>(result.object_pixels) : 0.0);
   std::printf("noise: binomial standard error per pixel max %.4f, mean %.4f\n", result.max_standard_error,
               result.mean_standard_error);
   std::printf("wrote %s (Y: AO, SE: standard error)\n", output.c_str());

@@ -47,12 +47,12 @@ bool RayScene::build(const scene::Scene& source, std::string& error) {
     return false;
   }
   rtcSetDeviceErrorFunction(impl->device.get(), record_error, &impl->last_error);
-  impl->origin = source.bounds.centre();
-  impl->radius = source.bounds.radius();
 
   // One triangle geometry holding every instance: world = instance matrix (double) x vertex, then
-  // made relative to the bounds' centre before rounding to float.
-  std::vector<glm::vec3> vertices;
+  // made relative to the centre of the vertices' bounds before rounding to float. The bounds are
+  // computed here rather than taken from scene.bounds, which a scene built in code may not have set.
+  std::vector<glm::dvec3> world_vertices;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   std::vector<glm::uvec3> triangles;
   for (size_t n = 0; n < source.instances.size(); ++n) {
     const scene::Instance& instance = source.instances[n];
@@ -61,16 +61,27 @@ bool RayScene::build(const scene::Scene& source, std::string& error) {
               std::to_string(source.meshes.size()) + ", found " + std::to_string(instance.mesh);
       return false;
     }
+    for (const scene::Vertex& v : source.meshes[static_cast<size_t>(instance.mesh)].vertices) {
+      const glm::dvec3 world = glm::dvec3(instance.world * glm::dvec4(glm::dvec3(v.position), 1.0));
+      world_vertices.push_back(world);
+      if (std::isfinite(world.x + world.y + world.z)) lo = glm::min(lo, world), hi = glm::max(hi, world);
+    }
+  }
+  if (world_vertices.size() > std::numeric_limits<uint32_t>::max()) {
+    error = source.name + ": more than 2^32 vertices after instancing; expected fewer";
+    return false;
+  }
+  if (lo.x <= hi.x) {
+    impl->origin = (lo + hi) * 0.5;
+    impl->radius = glm::length(hi - lo) * 0.5;
+  }
+  std::vector<glm::vec3> vertices;
+  vertices.reserve(world_vertices.size());
+  for (const glm::dvec3& world : world_vertices) vertices.emplace_back(world - impl->origin);
+
+  size_t first = 0;
+  for (const scene::Instance& instance : source.instances) {
     const scene::Mesh& mesh = source.meshes[static_cast<size_t>(instance.mesh)];
-    const size_t first = vertices.size();
-    for (const scene::Vertex& v : mesh.vertices) {
-      const glm::dvec3 world = glm::dvec3(instance.world * glm::dvec4(glm::dvec3(v.position), 1.0)) - impl->origin;
-      vertices.emplace_back(world);
-    }
-    if (vertices.size() > std::numeric_limits<uint32_t>::max()) {
-      error = source.name + ": more than 2^32 vertices after instancing; expected fewer";
-      return false;
-    }
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
       glm::uvec3 tri;
       bool valid = true;
@@ -91,6 +102,7 @@ bool RayScene::build(const scene::Scene& source, std::string& error) {
         ++impl->skipped;
       }
     }
+    first += mesh.vertices.size();
   }
   if (triangles.empty()) {
     error = source.name + ": expected at least one triangle with non-zero area, found none";

@@ -68,7 +68,6 @@ void trace_pixel(const Job& job, size_t pixel) {
   glm::dvec3 n(view.normal.at(pixel, 0), view.normal.at(pixel, 1), view.normal.at(pixel, 2));
   // The dump stores normals as half floats; renormalise so the basis is orthonormal.
   n = glm::normalize(n);
-  const double epsilon = surface_epsilon(job.scene.scene_radius(), p);
   ssao::Random random(job.settings.seed * 0x9E3779B97F4A7C15ull + pixel);
   const glm::dvec3 shift(random.uniform(), random.uniform(), random.uniform());
   const int rays = job.settings.rays;
@@ -76,7 +75,7 @@ void trace_pixel(const Job& job, size_t pixel) {
   if (job.settings.reference == Reference::near_field) {
     glm::dvec3 t, b;
     basis(n, t, b);
-    const glm::dvec3 origin = p + epsilon * n;
+    const glm::dvec3 origin = p + surface_epsilon(job.scene.scene_radius(), p) * n;
     int hits = 0;
     for (const glm::dvec3& point : job.points) {
       // Malley's method: uniform on the unit disk, lifted to the hemisphere, is cosine-weighted.
@@ -101,10 +100,9 @@ void trace_pixel(const Job& job, size_t pixel) {
       const glm::dvec2 xi(wrap(point.x + shift.x) * 2.0 - 1.0, wrap(point.y + shift.y) * 2.0 - 1.0);
       const double r = ssao::shell_radius(wrap(point.z + shift.z), ssao::kShellMin * radius, radius);
       const glm::dvec3 q = p + r * ssao::sphere_point(xi);
-      const glm::dvec3 segment = q - job.view.eye;
-      const double length = glm::length(segment);
-      // Blocked anywhere before the point (up to epsilon short of it, so a point on a surface is visible).
-      hidden += length > epsilon && job.scene.occluded(job.view.eye, segment, 0.0, 1.0 - epsilon / length) ? 1 : 0;
+      // Blocked anywhere on the segment from the eye to the point. No epsilon: the point is at least
+      // 0.8 R from the surface it was drawn around, and lies on some other surface with probability 0.
+      hidden += job.scene.occluded(job.view.eye, q - job.view.eye, 0.0, 1.0) ? 1 : 0;
     }
     const double fraction = static_cast<double>(hidden) / rays;
     job.out.per_radius[k].at(pixel) = static_cast<float>(fraction);
@@ -132,7 +130,7 @@ std::optional<Reference> parse_reference(std::string_view text) {
 
 double surface_epsilon(double scene_radius, const glm::dvec3& point) {
   const double largest = std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)});
-  return 1e-4 * scene_radius + 1e-6 * largest;
+  return 1e-5 * scene_radius + 1e-6 * largest;
 }
 
 bool compute_reference(const RayScene& scene, const View& view, const ReferenceSettings& settings,

@@ -1,6 +1,6 @@
 #pragma once
 // A scene::Scene as an Embree BVH for occlusion queries. Every instance's transform is applied in
-// double and the result stored as float relative to the centre of the scene's bounds, so a scene far
+// double and the result stored as float relative to the centre of the vertices' bounds, so a scene far
 // from the origin keeps the precision of its own size. Move-only; queries are thread-safe once built.
 #include "scene/scene.h"
 
@@ -30,7 +30,7 @@ class RayScene {
 
   size_t triangle_count() const;     // triangles in the BVH
   size_t skipped_triangles() const;  // degenerate ones left out
-  double scene_radius() const;       // half the diagonal of the scene's bounds, for scale-relative epsilons
+  double scene_radius() const;       // half the diagonal of the vertices' bounds, for scale-relative epsilons
 
  private:
   struct Impl;

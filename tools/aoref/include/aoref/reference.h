@@ -47,10 +47,11 @@ struct ReferenceResult {
   uint64_t rays_traced = 0;
 };
 
-// The offset along the normal that keeps a near-field ray from hitting its own surface: 1e-4 of the
-// scene's radius (well above float rounding of positions at the scene's scale, a thousandth of the
-// default AO radius) plus 1e-6 of the point's largest coordinate (about 16 float steps, for scenes
-// far from the origin). The sphere reference uses it to end the eye segment just before the point.
+// The offset along the normal that keeps a near-field ray from hitting its own surface: 1e-5 of the
+// scene's radius plus 1e-6 of the point's largest coordinate. Dumped positions are rebuilt from a
+// 32-bit linear depth and stored as float, so they sit off the true surface by a few float steps of
+// their magnitude (1.2e-7 relative each); this is about 10 such steps, and a ten-thousandth of the
+// player's default radius (a tenth of the scene's radius), so it hides no real occluder.
 double surface_epsilon(double scene_radius, const glm::dvec3& point);
 
 // Returns false and says why (bad settings or view) in `error`; nothing is traced then.

@@ -1,0 +1,116 @@
+// The error metrics on synthetic images with known answers.
+#include "aoref/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace aoref {
+namespace {
+
+constexpr int kW = 40, kH = 32;
+
+// A smooth AO pattern in [0.1, 0.9] so SSIM has structure to compare.
+Image pattern() {
+  Image image(kW, kH, 1);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      image.at(static_cast<size_t>(y * kW + x)) = static_cast<float>(0.5 + 0.4 * std::sin(x * 0.3) * std::cos(y * 0.2));
+  return image;
+}
+
+// Depth 5 everywhere but a background band on the left (x < 4).
+Image depth_with_background() {
+  Image depth(kW, kH, 1, 5.0f);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < 4; ++x) depth.at(static_cast<size_t>(y * kW + x)) = 0.0f;
+  return depth;
+}
+
+TEST(Metrics, IdenticalImagesHaveNoError) {
+  const Image a = pattern();
+  const Metrics m = compare(a, a, depth_with_background());
+  EXPECT_EQ(m.mae, 0.0);
+  EXPECT_EQ(m.rmse, 0.0);
+  EXPECT_EQ(m.bias, 0.0);
+  EXPECT_NEAR(m.ssim, 1.0, 1e-12);
+  EXPECT_EQ(m.edge_mae, 0.0);
+  EXPECT_EQ(m.pixels, static_cast<size_t>((kW - 4) * kH));
+}
+
+TEST(Metrics, ConstantOffsetGivesThatOffset) {
+  const Image reference = pattern();
+  for (float offset : {0.05f, -0.2f}) {
+    Image estimate = reference;
+    for (float& v : estimate.values) v += offset;
+    const Metrics m = compare(estimate, reference, depth_with_background());
+    // float images: the offset survives float rounding to about 1e-7 per pixel.
+    EXPECT_NEAR(m.mae, std::abs(offset), 1e-6);
+    EXPECT_NEAR(m.rmse, std::abs(offset), 1e-6);
+    EXPECT_NEAR(m.bias, offset, 1e-6);
+    EXPECT_NEAR(m.edge_mae, std::abs(offset), 1e-6);
+    EXPECT_LT(m.ssim, 1.0);
+  }
+}
+
+TEST(Metrics, BackgroundIsIgnored) {
+  const Image reference = pattern();
+  Image estimate = reference;
+  for (int y = 0; y < kH; ++y) estimate.at(static_cast<size_t>(y * kW + 1)) = 1.0f;  // only background differs
+  const Metrics m = compare(estimate, reference, depth_with_background());
+  EXPECT_EQ(m.mae, 0.0);
+  EXPECT_NEAR(m.ssim, 1.0, 1e-12);
+}
+
+TEST(Metrics, SsimFallsAsNoiseGrows) {
+  const Image reference = pattern();
+  double previous = 1.0;
+  for (float amplitude : {0.02f, 0.1f, 0.3f}) {
+    Image estimate = reference;
+    uint32_t state = 12345;
+    for (float& v : estimate.values) {
+      state = state * 1664525u + 1013904223u;  // a fixed LCG: the test must not depend on the C++ library
+      v += amplitude * (static_cast<float>(state >> 8) / 16777216.0f * 2.0f - 1.0f);
+    }
+    const Metrics m = compare(estimate, reference, depth_with_background());
+    EXPECT_LT(m.ssim, previous) << amplitude;
+    EXPECT_GT(m.mae, 0.0);
+    previous = m.ssim;
+  }
+  EXPECT_LT(previous, 0.5);
+}
+
+TEST(Metrics, EdgeMaskMarksDepthStepsAndSilhouettesOnly) {
+  // Columns 0-3 background, 4-19 a floor-like ramp (1% per column: no edge), 20-39 a step to 60% depth.
+  Image depth(kW, kH, 1);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      depth.at(static_cast<size_t>(y * kW + x)) = x < 4 ? 0.0f : x < 20 ? 5.0f * (1.0f + 0.01f * static_cast<float>(x)) : 3.0f;
+  MetricsSettings settings;
+  settings.edge_distance = 3;
+  const std::vector<uint8_t> mask = edge_mask(depth, settings);
+  for (int x = 0; x < kW; ++x) {
+    // Edge pixels: column 4 (next to background), 19 and 20 (the step); then 3 columns around each.
+    const bool expected = x >= 4 && (x <= 4 + 3 || (x >= 19 - 3 && x <= 20 + 3));
+    for (int y = 0; y < kH; ++y) ASSERT_EQ(mask[static_cast<size_t>(y * kW + x)], expected ? 1 : 0) << x << "," << y;
+  }
+  // Error only at the step shows up in edge_mae, diluted in mae.
+  Image reference(kW, kH, 1, 0.3f), estimate = reference;
+  for (int y = 0; y < kH; ++y) estimate.at(static_cast<size_t>(y * kW + 20)) = 0.7f;
+  const Metrics m = compare(estimate, reference, depth, settings);
+  EXPECT_NEAR(m.edge_mae, 0.4 * kH / static_cast<double>(m.edge_pixels), 1e-6);
+  EXPECT_NEAR(m.mae, 0.4 * kH / static_cast<double>(m.pixels), 1e-6);
+  EXPECT_EQ(m.edge_pixels, static_cast<size_t>(4 + 8) * kH);
+}
+
+TEST(Metrics, NoObjectPixelsGivesNaNAndMismatchedSizesThrow) {
+  const Image empty_depth(kW, kH, 1, 0.0f);
+  const Metrics m = compare(pattern(), pattern(), empty_depth);
+  EXPECT_EQ(m.pixels, 0u);
+  EXPECT_TRUE(std::isnan(m.mae) && std::isnan(m.rmse) && std::isnan(m.ssim) && std::isnan(m.edge_mae));
+  EXPECT_THROW(compare(pattern(), Image(kW, kH + 1, 1), depth_with_background()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aoref

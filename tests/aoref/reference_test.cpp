@@ -81,7 +81,8 @@ TEST_P(NearFieldWall, MatchesTheDiskSegment) {
 }
 
 // a = 0.001: a wall right at the point (0.4994; exactly 0 would put the ray origins on the wall).
-INSTANTIATE_TEST_SUITE_P(Distances, NearFieldWall, ::testing::Values(0.001, 0.25, 0.5, 0.9));
+INSTANTIATE_TEST_SUITE_P(Distances, NearFieldWall, ::testing::Values(0.001, 0.25, 0.5, 0.9),
+                         [](const auto& param_info) { return "a" + std::to_string(static_cast<int>(param_info.param * 1000.0)) + "e_3"; });
 
 TEST(NearField, CornerOfTwoWallsMatchesTheUnionOfSegments) {
   const double a = 0.25, b = 0.4;  // corner_fraction(0.25, 0.4) = 0.5330
@@ -149,7 +150,8 @@ TEST_P(SphereOnPlane, HidesHalfTheShellForEveryRadius) {
   EXPECT_EQ(r.rays_traced, 256u * 1024u * 3u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Eyes, SphereOnPlane, ::testing::Values(glm::dvec3(0, 0, 10), glm::dvec3(6, -3, 2)));
+INSTANTIATE_TEST_SUITE_P(Eyes, SphereOnPlane, ::testing::Values(glm::dvec3(0, 0, 10), glm::dvec3(6, -3, 2)),
+                         [](const auto& param_info) { return std::string(param_info.param.x == 0.0 ? "Above" : "Oblique"); });
 
 class SphereVsPlayer : public ::testing::TestWithParam<ssao::Pattern> {};
 

@@ -114,6 +114,15 @@ bool Renderer::init(const gl::Caps& caps, std::string& error) {
   assign_units(blur_bilateral_, {"u_source"});
   assign_units(composite_, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"});
   gl::api.UseProgram(0);
+  white_ = gl::make_texture();
+  gl::api.BindTexture(GL_TEXTURE_2D, white_.id());
+  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_SRGB8_ALPHA8, 1, 1);
+  const uint8_t white_texel[4] = {255, 255, 255, 255};
+  gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white_texel);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api.BindTexture(GL_TEXTURE_2D, 0);
   timer_.create(caps.timer_query);
   return true;
 }
@@ -263,7 +272,8 @@ void Renderer::draw_scene(bool depth_only, const glm::dmat4& view, const glm::ma
   for (const Draw& draw : draws_) {
     const scene::Material& material = materials_[static_cast<size_t>(draw.material)];
     const bool textured = material.base_color_texture >= 0;
-    const GBufferProgram* program = depth_only ? &depth_only_ : textured ? &gbuffer_textured_ : &gbuffer_plain_;
+    const bool fetches = textured || !settings_.untextured_variant;
+    const GBufferProgram* program = depth_only ? &depth_only_ : fetches ? &gbuffer_textured_ : &gbuffer_plain_;
     if (program != bound) {
       gl::api.UseProgram(program->program.id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
@@ -277,9 +287,9 @@ void Renderer::draw_scene(bool depth_only, const glm::dmat4& view, const glm::ma
     if (!depth_only) {
       gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
       gl::api.Uniform4fv(program->base_color, 1, glm::value_ptr(material.base_color));
-      if (textured) {
+      if (fetches) {
         gl::api.ActiveTexture(GL_TEXTURE0);
-        gl::api.BindTexture(GL_TEXTURE_2D, textures_[static_cast<size_t>(material.base_color_texture)].id());
+        gl::api.BindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<size_t>(material.base_color_texture)].id() : white_.id());
       }
     }
     if (material.double_sided) gl::api.Disable(GL_CULL_FACE);

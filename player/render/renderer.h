@@ -32,6 +32,9 @@ struct FrameSettings {
   View view = View::color;
   Prepass prepass = Prepass::automatic;
   bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
+  // Untextured materials draw with the G-buffer variant that fetches no texture. Off only to measure
+  // what that saves (aobench's untextured=fetch): they then sample a 1x1 white texture.
+  bool untextured_variant = true;
   bool check_errors = false;    // glGetError after each pass (tests, debug runs)
 };
 
@@ -123,6 +126,7 @@ class Renderer {
   double scene_radius_ = 1.0;
   glm::dvec3 scene_centre_{0.0};
 
+  gl::Texture white_;  // stands in for a missing base colour texture when untextured_variant is off
   gl::Texture albedo_, normal_, linear_depth_, depth_, ao_raw_, ao_temp_, ao_blurred_, ao_full_, output_;
   gl::Framebuffer gbuffer_fbo_, read_fbo_;
   gl::Buffer ssao_ubo_, blur_ubo_[2], upsample_ubo_, composite_ubo_;

@@ -32,7 +32,7 @@ shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float bas
   const int shift = settings.half_resolution ? 1 : 0;
   params.counts = glm::ivec4(samples, radii, (width + shift) >> shift, (height + shift) >> shift);
   params.config = glm::ivec4(0, shift, width, height);
-  params.radius_range = glm::ivec4(0, radii, 0, 0);
+  params.radius_range = glm::ivec4(0, radii, settings.skip_background ? 0 : 1, 0);
   const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
   for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
   const std::span<const float> angles = rotation_angles();
@@ -72,7 +72,7 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
       params.radius_4_bias.w = static_cast<float>(behind) / static_cast<float>(params.counts.x);
     }
   }
-  params.radius_range = glm::ivec4(first, end, 0, 0);
+  params.radius_range = glm::ivec4(first, end, settings.skip_background ? 0 : 1, 0);
   // A radius spanning 2^(k+4) pixels at the scene's centre reads level k: about 16 depth texels
   // across the radius, which is all the point samples can tell apart.
   const int max_level = depth_chain_levels(params.config.z, params.config.w) - 1;

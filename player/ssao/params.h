@@ -22,6 +22,10 @@ struct AoSettings {
   // measured, building the chain costs more than the coarser reads save (README, "Run time against error").
   bool depth_chain = false;
   bool skip_radii = true;             // drop radii under a pixel or far beyond the scene, per frame
+  // Background pixels return after one depth read (whole work groups of them at once). Off only to
+  // measure what that saves (aobench's background=shade): the estimator then runs there as if a
+  // surface stood at the far plane, and the result is still 0.
+  bool skip_background = true;
 };
 
 enum class Blur { off, gaussian, bilateral };

@@ -63,7 +63,7 @@ struct Frame {
     const int slices = std::max(1, p.counts.x / 8);
     const int steps = std::max(1, p.counts.x / (2 * slices));
     const glm::vec3 view = glm::normalize(-position);
-    float visibility = 0.0f;
+    float visibility = 0.0f, open = 0.0f;
     for (int slice = 0; slice < slices; ++slice) {
       const glm::vec2 jitter(p.kernel[slice]);
       const float phi = kPi * (static_cast<float>(slice) + jitter.x) / static_cast<float>(slices) + turn_angle;
@@ -100,11 +100,12 @@ struct Frame {
       float h1 = std::acos(std::clamp(horizon_plus, -1.0f, 1.0f));
       h0 = gamma + std::max(h0 - gamma, -0.5f * kPi);
       h1 = gamma + std::min(h1 - gamma, 0.5f * kPi);
-      const float arc0 = (cos_normal + 2.0f * h0 * std::sin(gamma) - std::cos(2.0f * h0 - gamma)) * 0.25f;
-      const float arc1 = (cos_normal + 2.0f * h1 * std::sin(gamma) - std::cos(2.0f * h1 - gamma)) * 0.25f;
-      visibility += projected_length * (arc0 + arc1);
+      const auto arc_integral = [&](float h) { return (cos_normal + 2.0f * h * std::sin(gamma) - std::cos(2.0f * h - gamma)) * 0.25f; };
+      visibility += projected_length * (arc_integral(h0) + arc_integral(h1));
+      open += projected_length * (arc_integral(gamma - 0.5f * kPi) + arc_integral(gamma + 0.5f * kPi));
     }
-    return std::clamp(1.0f - visibility / static_cast<float>(slices), 0.0f, 1.0f);
+    // The occluded share of the open arcs: see horizon_occlusion in ssao.comp.
+    return open > 0.0f ? std::clamp(1.0f - visibility / open, 0.0f, 1.0f) : 0.0f;
   }
 };
 

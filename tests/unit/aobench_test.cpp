@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace {
@@ -19,9 +20,10 @@ TEST(AobenchConfigs, NamedConfigurationsAreThePapersAndThePlayersDefault) {
   EXPECT_FALSE(paper->settings.ao_settings.skip_radii);
   const auto fallback = aobench::parse_config("default", error);
   ASSERT_TRUE(fallback.has_value());
-  const render::FrameSettings player;
+  render::FrameSettings player;
+  EXPECT_FALSE(fallback->settings.reuse_static_ao);  // every frame computes the AO it times
+  player.reuse_static_ao = false;
   EXPECT_EQ(aobench::describe(fallback->settings), aobench::describe(player));
-  EXPECT_FALSE(fallback->settings.reuse_static_ao);  // every frame is timed
 }
 
 TEST(AobenchConfigs, SpecificationsRoundTripThroughDescribe) {
@@ -33,6 +35,45 @@ TEST(AobenchConfigs, SpecificationsRoundTripThroughDescribe) {
   EXPECT_EQ(aobench::describe(again->settings), aobench::describe(config->settings));
   EXPECT_EQ(config->settings.ao_settings.samples, 32);
   EXPECT_TRUE(config->settings.ao_settings.half_resolution);
+}
+
+TEST(AobenchConfigs, SavingsCanBeSwitchedOffOneByOne) {
+  std::string error;
+  const auto config = aobench::parse_config("background=shade,untextured=fetch,reuse=on,prepass=off", error);
+  ASSERT_TRUE(config.has_value()) << error;
+  EXPECT_FALSE(config->settings.ao_settings.skip_background);
+  EXPECT_FALSE(config->settings.untextured_variant);
+  EXPECT_TRUE(config->settings.reuse_static_ao);
+  EXPECT_EQ(config->settings.prepass, render::Prepass::off);
+  EXPECT_EQ(aobench::describe(config->settings),
+            aobench::describe(aobench::parse_config(aobench::describe(config->settings), error)->settings));
+  // Settings left at the player's default stay out of the name.
+  EXPECT_EQ(aobench::describe(aobench::parse_config("default", error)->settings).find("background"), std::string::npos);
+  EXPECT_FALSE(aobench::parse_config("background=maybe", error).has_value());
+  EXPECT_NE(error.find("'maybe' is not a valid background"), std::string::npos) << error;
+  EXPECT_FALSE(aobench::parse_config("prepass=sometimes", error).has_value());
+}
+
+TEST(AobenchConfigs, AblationTurnsOffOneSavingAtATime) {
+  const auto configs = aobench::sweep("ablation");
+  ASSERT_FALSE(configs.empty());
+  EXPECT_EQ(configs.front().name, "default");
+  const render::FrameSettings player;
+  for (const aobench::Config& config : configs) {
+    const auto& s = config.settings;
+    // Each differs from the default in the one respect its name says and nowhere else.
+    int differences = (s.ao_settings.skip_background != player.ao_settings.skip_background) +
+                      (s.untextured_variant != player.untextured_variant) + (s.reuse_static_ao ? 1 : 0) +
+                      (s.prepass != player.prepass) + (s.ao_settings.depth_chain != player.ao_settings.depth_chain) +
+                      (s.ao_settings.half_resolution != player.ao_settings.half_resolution) +
+                      (s.ao_settings.skip_radii != player.ao_settings.skip_radii);
+    if (s.ao_settings.radii != player.ao_settings.radii) {
+      EXPECT_EQ(s.ao_settings.radii, 5) << config.name;
+    }
+    EXPECT_LE(differences, 1) << config.name;
+  }
+  for (const char* saving : {"background=shade", "untextured=fetch", "reuse=on", "prepass=on", "radii=5,skip=off"})
+    EXPECT_TRUE(std::any_of(configs.begin(), configs.end(), [&](const aobench::Config& c) { return c.name == saving; })) << saving;
 }
 
 TEST(AobenchConfigs, BadSpecificationsSayWhatIsWrong) {

@@ -107,22 +107,20 @@ TEST(Reference, HemisphereAndHorizonGiveNoOcclusionOnAFacingPlane) {
   settings.samples = 16;
   settings.estimator = ssao::Estimator::hemisphere;
   const auto hemisphere = run(image, params_for(settings, 0.3f), settings.estimator);
-  settings.estimator = ssao::Estimator::horizon;
-  const auto horizon = run(image, params_for(settings, 0.3f), settings.estimator);
-  double horizon_sum = 0.0;
-  int count = 0;
   for (int y = 8; y < kSize - 8; ++y)
-    for (int x = 8; x < kSize - 8; ++x) {
-      const size_t i = static_cast<size_t>(y * kSize + x);
-      EXPECT_EQ(hemisphere[i].x, 0.0f);
-      // Away from the image centre the view vector leans off the normal, and the cosine integral over
-      // two slices is exact only on average over slice angles: the 4x4 turn tile supplies those angles.
-      EXPECT_LT(horizon[i].x, 0.06f);
-      horizon_sum += horizon[i].x;
-      ++count;
-    }
-  EXPECT_LT(horizon_sum / count, 0.01);
-  EXPECT_NEAR(horizon[static_cast<size_t>(32 * kSize + 32)].x, 0.0f, 1e-5);  // near the axis the slices agree
+    for (int x = 8; x < kSize - 8; ++x) EXPECT_EQ(hemisphere[static_cast<size_t>(y * kSize + x)].x, 0.0f);
+  // Away from the image centre the view vector leans off the normal, where one slice's open arc
+  // integrates to 1 only on average over slice angles; the estimator's ratio of occluded to open
+  // arc keeps every pixel near 0 even with a single slice (8 taps). What remains (measured up to
+  // 0.006) is that taps land on texel centres, a little off the slice plane, as in XeGTAO.
+  settings.estimator = ssao::Estimator::horizon;
+  for (int samples : {8, 16, 64}) {
+    settings.samples = samples;
+    const auto horizon = run(image, params_for(settings, 0.3f), settings.estimator);
+    for (int y = 8; y < kSize - 8; ++y)
+      for (int x = 8; x < kSize - 8; ++x)
+        EXPECT_NEAR(horizon[static_cast<size_t>(y * kSize + x)].x, 0.0f, 0.01f) << samples << " taps at " << x << "," << y;
+  }
 }
 
 TEST(Reference, HorizonSeesAStepWallAtTheFoot) {
@@ -136,7 +134,7 @@ TEST(Reference, HorizonSeesAStepWallAtTheFoot) {
   settings.samples = 16;
   const auto ao = run(image, params_for(settings, 0.4f), ssao::Estimator::horizon);
   EXPECT_GT(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, 0.05f);
-  EXPECT_LT(ao[static_cast<size_t>(32 * kSize + 8)].x, 0.06f);  // open plane: only the slice-angle error (above)
+  EXPECT_NEAR(ao[static_cast<size_t>(32 * kSize + 8)].x, 0.0f, 0.01f);  // open plane, away from the step (above)
 }
 
 TEST(Reference, DepthChainKeepsObjectDepthsAndHalvesTheSize) {

@@ -7,7 +7,7 @@ namespace {
 
 render::FrameSettings defaults() {
   render::FrameSettings settings;  // the player's defaults
-  settings.reuse_static_ao = false;  // every frame is timed
+  settings.reuse_static_ao = false;  // every frame computes its AO, so every frame times it
   return settings;
 }
 
@@ -39,6 +39,12 @@ std::string describe(const render::FrameSettings& s) {
       << ",radii=" << s.ao_settings.radii << ",pattern=" << ssao::name(s.ao_settings.pattern)
       << ",blur=" << ssao::name(s.blur.mode) << ",scale=" << (s.ao_settings.half_resolution ? "half" : "full")
       << ",chain=" << (s.ao_settings.depth_chain ? "on" : "off") << ",skip=" << (s.ao_settings.skip_radii ? "on" : "off");
+  const render::FrameSettings usual = defaults();
+  if (s.ao_settings.skip_background != usual.ao_settings.skip_background)
+    out << ",background=" << (s.ao_settings.skip_background ? "skip" : "shade");
+  if (s.untextured_variant != usual.untextured_variant) out << ",untextured=" << (s.untextured_variant ? "variant" : "fetch");
+  if (s.reuse_static_ao != usual.reuse_static_ao) out << ",reuse=" << (s.reuse_static_ao ? "on" : "off");
+  if (s.prepass != usual.prepass) out << ",prepass=" << (s.prepass == render::Prepass::automatic ? "auto" : render::name(s.prepass));
   return out.str();
 }
 
@@ -83,9 +89,20 @@ std::optional<Config> parse_config(const std::string& text, std::string& error) 
         ok = on_off(value, ao.depth_chain);
       } else if (key == "skip") {
         ok = on_off(value, ao.skip_radii);
+      } else if (key == "background") {
+        ok = value == "skip" || value == "shade";
+        ao.skip_background = value == "skip";
+      } else if (key == "untextured") {
+        ok = value == "variant" || value == "fetch";
+        config.settings.untextured_variant = value == "variant";
+      } else if (key == "reuse") {
+        ok = on_off(value, config.settings.reuse_static_ao);
+      } else if (key == "prepass") {
+        ok = value == "on" || value == "off" || value == "auto";
+        config.settings.prepass = value == "on" ? render::Prepass::on : value == "off" ? render::Prepass::off : render::Prepass::automatic;
       } else {
         error = "--config '" + text + "': unknown key '" + key +
-                "' (expected estimator, samples, radii, pattern, blur, scale, chain, skip)";
+                "' (expected estimator, samples, radii, pattern, blur, scale, chain, skip, background, untextured, reuse, prepass)";
         return std::nullopt;
       }
     } catch (const std::exception&) {
@@ -101,6 +118,13 @@ std::optional<Config> parse_config(const std::string& text, std::string& error) 
 
 std::vector<Config> sweep(const std::string& kind) {
   std::vector<Config> configs;
+  if (kind == "ablation") {
+    std::string error;
+    for (const char* spec : {"default", "background=shade", "untextured=fetch", "reuse=on", "prepass=on", "prepass=off",
+                             "chain=on", "scale=half", "radii=5", "radii=5,skip=off", "radii=5,chain=on"})
+      configs.push_back(*parse_config(spec, error));
+    return configs;
+  }
   const bool full = kind == "full";
   const std::vector<int> samples = full ? std::vector<int>{2, 4, 8, 16, 32, 64} : std::vector<int>{4, 8, 16, 32};
   const std::vector<int> radii = full ? std::vector<int>{1, 2, 3, 4, 5} : std::vector<int>{1, 3, 5};

@@ -80,7 +80,8 @@ struct Row {
   std::string scene;
   int view = 0;
   const aobench::Config* config = nullptr;
-  double time_ms = 0.0;
+  double time_ms = 0.0;   // the AO passes (depth chain, SSAO, blur, upsampling)
+  double frame_ms = 0.0;  // every pass of the frame
   aoref::Metrics own, near_field;
   std::string reference;
 };
@@ -101,7 +102,7 @@ int main(int argc, char** argv) {
   cli.add_option("--views", options.views, "Views per scene (azimuths spread round the scene)")->check(CLI::Range(1, 12))->capture_default_str();
   cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")->check(CLI::Range(8, 1 << 16))->capture_default_str();
   cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see README); default: paper and default");
-  cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each skip turned off)")
+  cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each saving turned off in turn)")
       ->check(CLI::IsMember({"quick", "full", "ablation"}));
   cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")->check(CLI::IsMember(platform::names()))->capture_default_str();
   cli.add_option("-o,--csv", options.csv, "CSV output")->capture_default_str();
@@ -136,9 +137,7 @@ int main(int argc, char** argv) {
     }
     configs.push_back(*config);
   }
-  if (options.sweep == "ablation") {
-    for (const char* spec : {"default", "chain=off", "skip=off", "scale=full", "scale=half"}) configs.push_back(*aobench::parse_config(spec, error));
-  } else if (!options.sweep.empty()) {
+  if (!options.sweep.empty()) {
     auto grid = aobench::sweep(options.sweep);
     configs.insert(configs.end(), grid.begin(), grid.end());
   }
@@ -163,8 +162,8 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << options.csv << ": cannot write\n";
     return 1;
   }
-  csv << "scene,view,config,estimator,samples,radii,pattern,blur,scale,chain,skip,time_ms,reference,mae,rmse,ssim,edge_mae,"
-         "mae_near_field,rmse_near_field,ssim_near_field\n";
+  csv << "scene,view,config,estimator,samples,radii,pattern,blur,scale,chain,skip,background,untextured,reuse,prepass,"
+         "time_ms,raster_ms,frame_ms,reference,mae,rmse,ssim,edge_mae,mae_near_field,rmse_near_field,ssim_near_field\n";
   std::vector<Row> rows;
 
   for (const std::string& scene_spec : options.scenes) {
@@ -221,14 +220,20 @@ int main(int argc, char** argv) {
           std::cerr << "error: " << config.name << ": " << error << "\n";
           return 1;
         }
-        std::vector<double> times;
+        // Frame 0 warms up (and, with reuse on, computes the AO the timed frames keep).
+        std::vector<double> times, raster_times, frame_times;
         for (int frame = 0; frame <= options.frames; ++frame) {
           renderer.render(camera);
           const render::PassTimes pass = renderer.collect_times();
-          double ao_ms = 0.0;
+          double ao_ms = 0.0, frame_ms = 0.0;
           for (int p : {render::kDepthChain, render::kSsao, render::kBlurH, render::kBlurV, render::kUpsample})
             ao_ms += std::max(0.0, pass.ms[static_cast<size_t>(p)]);
-          if (frame > 0) times.push_back(ao_ms);
+          for (double ms : pass.ms) frame_ms += std::max(0.0, ms);
+          if (frame > 0) {
+            times.push_back(ao_ms);
+            raster_times.push_back(std::max(0.0, pass.ms[render::kDepthPrepass]) + std::max(0.0, pass.ms[render::kGBuffer]));
+            frame_times.push_back(frame_ms);
+          }
         }
         const bool is_sphere = config.settings.ao_settings.estimator == ssao::Estimator::sphere;
         const auto estimate = renderer.read_ao_final();
@@ -237,6 +242,7 @@ int main(int argc, char** argv) {
         row.view = view_index;
         row.config = &config;
         row.time_ms = median(times);
+        row.frame_ms = median(frame_times);
         row.reference = is_sphere ? "sphere" : "near-field";
         row.own = aoref::compare(ao_image(estimate, width, height, false),
                                  is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
@@ -246,7 +252,9 @@ int main(int argc, char** argv) {
             << ',' << s.ao_settings.samples << ',' << s.ao_settings.radii << ',' << ssao::name(s.ao_settings.pattern) << ','
             << ssao::name(s.blur.mode) << ',' << (s.ao_settings.half_resolution ? "half" : "full") << ','
             << (s.ao_settings.depth_chain ? "on" : "off") << ',' << (s.ao_settings.skip_radii ? "on" : "off") << ','
-            << row.time_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
+            << (s.ao_settings.skip_background ? "skip" : "shade") << ',' << (s.untextured_variant ? "variant" : "fetch") << ','
+            << (s.reuse_static_ao ? "on" : "off") << ',' << (s.prepass == render::Prepass::automatic ? "auto" : render::name(s.prepass))
+            << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
             << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << "\n";
         rows.push_back(row);
         progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));
@@ -258,12 +266,13 @@ int main(int argc, char** argv) {
   // Aggregate each configuration over scenes and views: mean time, mean error against the
   // near-field reference (the one every estimator can be judged by).
   std::map<const aobench::Config*, std::pair<double, double>> totals;
-  std::map<const aobench::Config*, double> own_totals;
+  std::map<const aobench::Config*, double> own_totals, frame_totals;
   std::map<const aobench::Config*, int> counts;
   for (const Row& row : rows) {
     totals[row.config].first += row.time_ms;
     totals[row.config].second += row.near_field.mae;
     own_totals[row.config] += row.own.mae;
+    frame_totals[row.config] += row.frame_ms;
     ++counts[row.config];
   }
   std::vector<aobench::ChartPoint> points;
@@ -278,11 +287,14 @@ int main(int argc, char** argv) {
   for (size_t i : aobench::pareto_front(points)) points[i].on_front = true;
   std::cout << "\nmean over " << options.scenes.size() * static_cast<size_t>(options.views)
             << " scene views (error: MAE against the near-field reference; own: against the estimator's own reference)\n";
-  std::cout << std::left << std::setw(12) << "time ms" << std::setw(12) << "MAE" << std::setw(12) << "own MAE" << "configuration\n";
+  std::cout << std::left << std::setw(12) << "AO ms" << std::setw(12) << "frame ms" << std::setw(12) << "MAE" << std::setw(12)
+            << "own MAE" << "configuration\n";
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].on_front && points[i].mark.empty() && configs.size() > 40) continue;
-    std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12) << points[i].error
-              << std::setw(12) << own_totals[order[i]] / std::max(counts[order[i]], 1) << order[i]->name
+    const int n = std::max(counts[order[i]], 1);
+    std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12)
+              << frame_totals[order[i]] / n << std::setw(12) << points[i].error
+              << std::setw(12) << own_totals[order[i]] / n << order[i]->name
               << (points[i].on_front ? "  [front]" : "") << (points[i].mark.empty() ? "" : "  <- " + points[i].mark) << "\n";
   }
   if (!aobench::write_chart(options.chart, points, "aobench " + options.size, "MAE vs near-field reference", error)) {

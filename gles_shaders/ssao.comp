@@ -44,6 +44,27 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
 #define SAMPLE_PRECISION highp
 #endif
 
+#if ESTIMATOR == ESTIMATOR_HEMISPHERE
+// How far the shaded point's tangent plane lies from the eye along the ray through `ndc` (0 where the
+// plane turns away from that ray).
+highp float plane_depth(highp vec2 ndc, highp vec3 normal, highp float plane) {
+  highp float facing = dot(normal, vec3((ndc + ssao.unproject.zw) * ssao.unproject.xy, -1.0));
+  return facing < -1e-4 ? plane / facing : 0.0;
+}
+
+// The stored depth holds at a texel's centre; on a slanted face the depth changes within one texel by
+// as much as a small radius, and samples just above the face would read as hidden (self-occlusion that
+// grows as radii shrink towards a pixel). This moves the stored depth along the shaded point's tangent
+// plane to the sample's exact position; on another surface it is off by that surface's own slope
+// over a fraction of a texel, as before.
+highp float subtexel_shift(highp vec2 ndc, ivec2 texel, int level, highp vec3 normal, highp float plane, highp float radius) {
+  ivec2 coarse = min(texel >> level, textureSize(u_linear_depth, level) - 1);
+  highp vec2 centre = (vec2(coarse) + 0.5) * float(1 << level) / vec2(ssao.config.zw) * 2.0 - 1.0;
+  highp float exact = plane_depth(ndc, normal, plane), at_centre = plane_depth(centre, normal, plane);
+  return exact > 0.0 && at_centre > 0.0 ? clamp(exact - at_centre, -radius, radius) : 0.0;
+}
+#endif
+
 // The share of kernel points, placed by `basis` at `radius`, that the stored surface hides. A point
 // counts when the surface is in front of it by more than the bias, and that surface lies within the
 // radius of the shaded point in depth: farther occluders are other geometry (no halos).
@@ -52,14 +73,21 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
 highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basis, highp float radius, int level) {
   SAMPLE_PRECISION float bias = ssao.radius_4_bias.y * radius;
   highp vec4 clip_centre = ssao.projection * vec4(position, 1.0);
+#if ESTIMATOR == ESTIMATOR_HEMISPHERE
+  highp float plane = dot(basis[2], position);
+#endif
   int hidden = 0;
   for (int i = 0; i < ssao.counts.x; ++i) {
     SAMPLE_PRECISION vec3 offset = radius * (basis * ssao.kernel[i].xyz);
     highp vec4 clip = clip_centre + ssao.projection * vec4(offset, 0.0);
     if (clip.w <= 0.0) continue;  // behind the eye: nothing on screen can hide it
-    ivec2 texel = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(ssao.config.zw)));
+    highp vec2 ndc = clip.xy / clip.w;
+    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(ssao.config.zw)));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
     highp float surface = depth_at(texel, level);
+#if ESTIMATOR == ESTIMATOR_HEMISPHERE
+    if (surface > 0.0) surface += subtexel_shift(ndc, texel, level, basis[2], plane, radius);
+#endif
     SAMPLE_PRECISION float surface_offset = surface - depth;  // how far the surface lies behind the point
     SAMPLE_PRECISION float sample_offset = -offset.z;          // how far the sample lies behind it
     if (surface > 0.0 && surface_offset < sample_offset - bias && abs(surface_offset) < radius) ++hidden;

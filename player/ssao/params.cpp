@@ -59,7 +59,8 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
   // Radii come largest first. One far beyond the scene's size sees the same as the largest one that
   // fits. One under a quarter pixel even where the scene is nearest keeps every sample in the shaded
   // pixel itself, so its result is known without looking: the sphere estimator then hides exactly the
-  // samples more than the bias behind the point (whatever the turn), the others hide none.
+  // samples more than the bias behind the point (whatever the turn); the hemisphere's, all above
+  // the tangent plane it compares against, and the horizon's, under a pixel, hide none.
   int first = 0, end = radii;
   params.radius_4_bias.w = 0.0f;
   if (settings.skip_radii) {

@@ -34,21 +34,38 @@ struct Frame {
     return {(ndc.x + p.unproject.z) * d * p.unproject.x, (ndc.y + p.unproject.w) * d * p.unproject.y, -d};
   }
 
+  float plane_depth(glm::vec2 ndc, glm::vec3 normal, float plane) const {
+    const float facing = glm::dot(normal, glm::vec3((ndc.x + p.unproject.z) * p.unproject.x, (ndc.y + p.unproject.w) * p.unproject.y, -1.0f));
+    return facing < -1e-4f ? plane / facing : 0.0f;
+  }
+  // The hemisphere estimator's correction of the stored depth to the sample's exact position: see
+  // subtexel_shift in ssao.comp.
+  float subtexel_shift(glm::vec2 ndc, glm::ivec2 texel, int level, glm::vec3 normal, float plane, float radius) const {
+    const glm::ivec2 coarse = glm::min(glm::ivec2(texel.x >> level, texel.y >> level), depth.sizes[static_cast<size_t>(level)] - 1);
+    const glm::vec2 centre = (glm::vec2(coarse) + 0.5f) * static_cast<float>(1 << level) / glm::vec2(full) * 2.0f - 1.0f;
+    const float exact = plane_depth(ndc, normal, plane), at_centre = plane_depth(centre, normal, plane);
+    return exact > 0.0f && at_centre > 0.0f ? std::clamp(exact - at_centre, -radius, radius) : 0.0f;
+  }
+
   // `mediump` rounds what ssao.comp declares SAMPLE_PRECISION to half floats, emulating AO_MEDIUMP.
-  float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level, bool mediump) const {
+  float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level, bool mediump,
+                     bool shift_to_sample) const {
     const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
     const float bias = sample_precision(p.radius_4_bias.y * radius);
     const glm::vec4 clip_centre = p.projection * glm::vec4(position, 1.0f);
+    const float plane = glm::dot(basis[2], position);
     int hidden = 0;
     for (int i = 0; i < p.counts.x; ++i) {
       glm::vec3 offset = radius * (basis * glm::vec3(p.kernel[i]));
       for (int c = 0; c < 3; ++c) offset[c] = sample_precision(offset[c]);
       const glm::vec4 clip = clip_centre + p.projection * glm::vec4(offset, 0.0f);
       if (clip.w <= 0.0f) continue;
-      const glm::vec2 uv = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(full);
+      const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+      const glm::vec2 uv = (ndc * 0.5f + 0.5f) * glm::vec2(full);
       const glm::ivec2 texel(static_cast<int>(std::floor(uv.x)), static_cast<int>(std::floor(uv.y)));
       if (outside(texel, full)) continue;
-      const float surface = depth_at(texel, level);
+      float surface = depth_at(texel, level);
+      if (shift_to_sample && surface > 0.0f) surface += subtexel_shift(ndc, texel, level, basis[2], plane, radius);
       const float surface_offset = sample_precision(surface - d);
       const float sample_offset = sample_precision(-offset.z);
       if (surface > 0.0f && surface_offset < sample_offset - bias && std::abs(surface_offset) < radius) ++hidden;
@@ -178,7 +195,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
                               ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
-                              : frame.hidden_share(position, d, basis, radius, level, mediump));
+                              : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));
     }

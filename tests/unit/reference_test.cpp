@@ -123,6 +123,38 @@ TEST(Reference, HemisphereAndHorizonGiveNoOcclusionOnAFacingPlane) {
   }
 }
 
+TEST(Reference, HemisphereSamplesDoNotHideBehindTheirOwnSlantedFace) {
+  // An open plane tilted 60 degrees away from the camera, radius about 1.5 pixels: every sample lands
+  // within a texel or two of the shaded one, where the stored depth (held at texel centres) differs
+  // from the face under the sample by as much as the radius. Moved along the tangent plane to each
+  // sample's exact position, the open face stays unoccluded.
+  const glm::vec3 normal = glm::normalize(glm::vec3(0.0f, std::sin(glm::radians(60.0f)), std::cos(glm::radians(60.0f))));
+  const float plane = glm::dot(normal, glm::vec3(0.0f, 0.0f, -5.0f));
+  ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::hemisphere;
+  settings.samples = 32;
+  settings.skip_radii = false;
+  const auto params = params_for(settings, 0.1f);
+  std::vector<float> image(kSize * kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const glm::vec2 ndc = (glm::vec2(x, y) + 0.5f) / static_cast<float>(kSize) * 2.0f - 1.0f;
+      const glm::vec3 ray(ndc.x * params.unproject.x, ndc.y * params.unproject.y, -1.0f);
+      image[static_cast<size_t>(y * kSize + x)] = plane / glm::dot(normal, ray);
+    }
+  const std::vector<glm::vec3> normals(image.size(), normal);
+  ASSERT_GT(0.1f * params.radius_4_bias.z / 5.0f, 1.0f);  // the radius spans more than a pixel
+  const auto ao = ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, params, 1.0f / 20.0f, settings.estimator);
+  double sum = 0.0;
+  for (int y = 4; y < kSize - 4; ++y)
+    for (int x = 4; x < kSize - 4; ++x) {
+      const float value = ao[static_cast<size_t>(y * kSize + x)].x;
+      EXPECT_LE(value, 1.0f / 32.0f + 1e-3f) << x << "," << y;  // at most one sample off by rounding
+      sum += value;
+    }
+  EXPECT_LT(sum / ((kSize - 8) * (kSize - 8)), 0.005);
+}
+
 TEST(Reference, HorizonSeesAStepWallAtTheFoot) {
   // The foot of a step (plane at depth 5, a closer plane at 4.8 beginning two pixels to the right):
   // the wall rises into the hemisphere, so the horizon estimator reports occlusion there.

@@ -33,6 +33,7 @@ struct Options {
   std::string size = "1024x768";
   int frames = 5;
   int views = 3;
+  double distance = 1.0;
   int rays = 256;
   std::vector<std::string> configs;
   std::string sweep;  // "", "quick", "full" or "ablation"
@@ -100,6 +101,9 @@ int main(int argc, char** argv) {
   cli.add_option("--size", options.size, "Image size WxH")->capture_default_str();
   cli.add_option("--frames", options.frames, "Timed frames per configuration (after one warm-up)")->check(CLI::Range(1, 1000))->capture_default_str();
   cli.add_option("--views", options.views, "Views per scene (azimuths spread round the scene)")->check(CLI::Range(1, 12))->capture_default_str();
+  cli.add_option("--distance", options.distance,
+                 "Camera distance as a multiple of the distance at which the scene just fits (far views shrink the radii on screen)")
+      ->check(CLI::Range(0.2, 100.0))->capture_default_str();
   cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")->check(CLI::Range(8, 1 << 16))->capture_default_str();
   cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see README); default: paper and default");
   cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each saving turned off in turn)")
@@ -187,6 +191,7 @@ int main(int argc, char** argv) {
       scene::Framing framing;
       framing.azimuth_deg = 30.0 + 360.0 * view_index / options.views;
       framing.elevation_deg = 25.0;
+      framing.distance = options.distance;
       const scene::Camera camera = scene::frame(scene.bounds, framing, width, height);
       renderer.render(camera);
       const app::Surface surface = app::read_surface(renderer, camera);

@@ -45,8 +45,11 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(choices<ssao::Estimator>({{"sphere", ssao::Estimator::sphere},
                                                                     {"hemisphere", ssao::Estimator::hemisphere},
                                                                     {"horizon", ssao::Estimator::horizon}})))
-      ->default_str("hemisphere");
-  std::string resolution = "full", depth_chain = "off", skip_radii = "on", reuse_ao = "on";
+      ->default_str(std::string(ssao::name(render.frame.ao_settings.estimator)));
+  const auto on_off = [](bool on) { return std::string(on ? "on" : "off"); };
+  std::string resolution = render.frame.ao_settings.half_resolution ? "half" : "full";
+  std::string depth_chain = on_off(render.frame.ao_settings.depth_chain), skip_radii = on_off(render.frame.ao_settings.skip_radii),
+              reuse_ao = on_off(render.frame.reuse_static_ao);
   render_cmd->add_option("--reuse-ao", reuse_ao, "Keep the last frame's AO while camera and scene stand still (off: recompute every frame, for timing)")
       ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
   render_cmd->add_option("--resolution", resolution, "AO resolution: full, or half with depth-aware upsampling")
@@ -66,18 +69,18 @@ int main(int argc, char** argv) {
                                                                   {"jittered", ssao::Pattern::jittered},
                                                                   {"latin", ssao::Pattern::latin},
                                                                   {"poisson", ssao::Pattern::poisson}})))
-      ->default_str("poisson");
+      ->default_str(std::string(ssao::name(render.frame.ao_settings.pattern)));
   render_cmd->add_option("--blur", render.frame.blur.mode, "AO blur")
       ->transform(CLI::CheckedTransformer(choices<ssao::Blur>({{"gaussian", ssao::Blur::gaussian},
                                                                {"bilateral", ssao::Blur::bilateral},
                                                                {"off", ssao::Blur::off}})))
-      ->default_str("off");
+      ->default_str(std::string(ssao::name(render.frame.blur.mode)));
   render_cmd->add_option("--view", render.frame.view, "What to show")
       ->transform(CLI::CheckedTransformer(choices<render::View>({{"color", render::View::color},
                                                                  {"ao", render::View::ao},
                                                                  {"normal", render::View::normal},
                                                                  {"depth", render::View::depth}})))
-      ->default_str("color");
+      ->default_str(std::string(render::name(render.frame.view)));
   render_cmd->add_option("--prepass", prepass, "Depth prepass before the G-buffer: on, off, or auto (measure both, keep the faster)")
       ->check(CLI::IsMember({"on", "off", "auto"}))->capture_default_str();
   render_cmd->add_option("--platform", render.platform, "GL platform: egl (headless EGL), osmesa, or auto (egl, then osmesa)")

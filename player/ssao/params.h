@@ -12,12 +12,12 @@ namespace ssao {
 // The defaults are the configuration aobench put on the time-error front ahead of the paper's
 // (sphere, 8 samples x 5 radii, Gaussian blur): see README, "Run time against error".
 struct AoSettings {
-  Estimator estimator = Estimator::hemisphere;
-  int samples = 16;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
+  Estimator estimator = Estimator::horizon;
+  int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
   int radii = 1;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
   float bias = 0.03f;                 // depth bias as a fraction of each radius
-  bool half_resolution = false;       // AO at half width and height, then depth-aware upsampling
+  bool half_resolution = true;        // AO at half width and height, then depth-aware upsampling
   // Large radii read coarser levels of the depth chain. Off by default: on llvmpipe, where it was
   // measured, building the chain costs more than the coarser reads save (README, "Run time against error").
   bool depth_chain = false;

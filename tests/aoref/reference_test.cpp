@@ -170,6 +170,7 @@ TEST_P(SphereVsPlayer, AgreesOnAFacingPlane) {
   ao.radii = 5;
   ao.samples = 64;
   ao.pattern = GetParam();
+  ao.half_resolution = false;  // the player's AO at every pixel the ray tracer sees
   const float radius = 0.3f;
   auto params = ssao::make_ssao_params(ao, radius, kSize, kSize);
   ssao::FrameView frame;

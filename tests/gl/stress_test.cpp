@@ -21,6 +21,7 @@ render::FrameSettings stress_settings() {
   settings.width = settings.height = kSide;
   settings.check_errors = true;
   settings.blur.mode = ssao::Blur::off;  // compare the estimator itself
+  settings.ao_settings.half_resolution = false;  // pixel for pixel against the untouched case
   settings.ao_settings.samples = 16;
   return settings;
 }

@@ -10,7 +10,9 @@ namespace {
 constexpr int kSize = 64;
 
 // The SSAO block for a camera at the origin with a 45-degree square frustum, as the renderer makes it.
-shared_layout::SsaoParams params_for(const ssao::AoSettings& settings, float radius) {
+// The images here are read texel for texel at full resolution, whatever the player's default.
+shared_layout::SsaoParams params_for(ssao::AoSettings settings, float radius) {
+  settings.half_resolution = false;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
   auto params = ssao::make_ssao_params(settings, radius, kSize, kSize);
   ssao::FrameView view;
@@ -238,6 +240,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
   settings.estimator = ssao::Estimator::sphere;
   settings.radii = 1;
   settings.depth_chain = false;
+  settings.half_resolution = false;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
   auto params = ssao::make_ssao_params(settings, 0.01f, kSize, kSize);  // 0.01 * 77 / 5 = 0.15 pixels
   ssao::FrameView view;

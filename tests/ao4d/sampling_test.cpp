@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <set>
 
 namespace ao4d {
 namespace {
@@ -76,12 +78,36 @@ TEST(CosineHemisphere, HasTheMomentsOfDensityCosOver4PiOver3) {
     }
 }
 
-TEST(PointSeed, DependsOnSeedAndIndexOnly) {
-    EXPECT_EQ(point_seed(1, 5), point_seed(1, 5));
-    EXPECT_NE(point_seed(1, 5), point_seed(1, 6));
-    EXPECT_NE(point_seed(1, 5), point_seed(2, 5));
-    Rng a(point_seed(9, 3)), b(point_seed(9, 3));
+TEST(PointSeed, DependsOnSeedStreamAndIndexOnly) {
+    EXPECT_EQ(point_seed(1, SeedStream::voxels, 5), point_seed(1, SeedStream::voxels, 5));
+    EXPECT_NE(point_seed(1, SeedStream::voxels, 5), point_seed(1, SeedStream::voxels, 6));
+    EXPECT_NE(point_seed(1, SeedStream::voxels, 5), point_seed(2, SeedStream::voxels, 5));
+    Rng a(point_seed(9, SeedStream::points, 3)), b(point_seed(9, SeedStream::points, 3));
     for (int i = 0; i < 10; ++i) EXPECT_EQ(a.next(), b.next());
+}
+
+// Voxel i and vertex i (and line i of a points file) of one run must not share their random
+// directions: all seeds differ, and the streams' draws are uncorrelated.
+TEST(PointSeed, StreamsOfVoxelsVerticesAndPointsAreIndependent) {
+    constexpr std::uint64_t kCount = 20000;
+    const SeedStream streams[] = {SeedStream::points, SeedStream::voxels, SeedStream::vertices};
+    std::set<std::uint64_t> seeds;
+    for (const SeedStream s : streams)
+        for (std::uint64_t i = 0; i < kCount; ++i) seeds.insert(point_seed(1, s, i));
+    EXPECT_EQ(seeds.size(), 3 * kCount);
+    // Pearson correlation of the first uniform draw of point i in two streams; for independent
+    // streams it is about normal with sd 1 / sqrt(kCount) = 0.007, so 4 sd is 0.028.
+    for (std::size_t x = 0; x < 3; ++x)
+        for (std::size_t y = x + 1; y < 3; ++y) {
+            double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+            for (std::uint64_t i = 0; i < kCount; ++i) {
+                const double u = Rng(point_seed(1, streams[x], i)).uniform(), v = Rng(point_seed(1, streams[y], i)).uniform();
+                sx += u, sy += v, sxx += u * u, syy += v * v, sxy += u * v;
+            }
+            const double n = kCount;
+            const double r = (sxy - sx * sy / n) / std::sqrt((sxx - sx * sx / n) * (syy - sy * sy / n));
+            EXPECT_LT(std::abs(r), 4.0 / std::sqrt(n)) << "streams " << x << " and " << y;
+        }
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ Volume render_volume(const Scene& scene, const CameraParams& camera, const AoPar
             Vec4 normal = scene.normal(hit->cell);
             if (dot(normal, dir) > 0) normal = -normal;  // AO of the side the camera sees
             const Vec4 p = origin + hit->t * dir;
-            volume.ao[voxel] = static_cast<float>(ambient_occlusion(scene, p, normal, ao, point_seed(ao.seed, voxel), hit->cell));
+            volume.ao[voxel] = static_cast<float>(ambient_occlusion(scene, p, normal, ao, point_seed(ao.seed, SeedStream::voxels, voxel), hit->cell));
             volume.depth[voxel] = static_cast<float>(hit->t);
         },
         progress);

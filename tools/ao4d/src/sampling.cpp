@@ -35,10 +35,10 @@ std::uint64_t Rng::next() {
 
 double Rng::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
-std::uint64_t point_seed(std::uint64_t run_seed, std::uint64_t point_index) {
-    std::uint64_t state = run_seed ^ (point_index * 0xd1342543de82ef95ULL);
-    splitmix64(state);
-    return splitmix64(state);
+std::uint64_t point_seed(std::uint64_t run_seed, SeedStream stream, std::uint64_t point_index) {
+    // Each step is x -> mix(x), a bijection: a hash chain over (run seed, stream, index).
+    const auto mix = [](std::uint64_t x) { return splitmix64(x); };
+    return mix(mix(mix(run_seed) ^ static_cast<std::uint64_t>(stream)) ^ point_index);
 }
 
 Vec4 uniform_sphere(Rng& rng) {

@@ -266,7 +266,7 @@ std::vector<double> ambient_occlusion(const Scene& scene, std::span<const Orient
     parallel_for(
         points.size(), params.threads,
         [&](std::size_t i) {
-            ao[i] = ambient_occlusion(scene, points[i].position, points[i].normal, params, point_seed(params.seed, i));
+            ao[i] = ambient_occlusion(scene, points[i].position, points[i].normal, params, point_seed(params.seed, SeedStream::points, i));
         },
         progress);
     return ao;
@@ -275,11 +275,20 @@ std::vector<double> ambient_occlusion(const Scene& scene, std::span<const Orient
 std::vector<double> vertex_ambient_occlusion(const Scene& scene, const AoParams& params, const ProgressFn& progress) {
     const std::vector<Vec4> normals = vertex_normals(scene.mesh());
     std::vector<double> ao(normals.size(), 0.0);
+    // A vertex can rest on another surface, as the pyramids' base vertices rest on the floor of the
+    // two-tetrahedra scene. Rays from the vertex itself would cross that surface at t = 0, below
+    // ambient_occlusion's t_min, and every ray into the floor would count as open (all 18 vertices of
+    // that scene got AO 0). So the rays start a hair off the vertex along its normal, 1e-6 of the
+    // scene size, far above t_min. Its own cells do not get in the way: where they form a convex
+    // corner the vertex normal, a positive sum of their normals, keeps every hemisphere ray outside
+    // them; where they fold inwards, the rays they catch do enter the object.
+    const double offset = 1e-6 * std::max(scene.diagonal(), params.radius);
     parallel_for(
         normals.size(), params.threads,
         [&](std::size_t i) {
             if (length(normals[i]) == 0) return;  // only degenerate cells around it: no hemisphere to sample
-            ao[i] = ambient_occlusion(scene, scene.mesh().vertices[i], normals[i], params, point_seed(params.seed, i));
+            ao[i] = ambient_occlusion(scene, scene.mesh().vertices[i] + offset * normals[i], normals[i], params,
+                                      point_seed(params.seed, SeedStream::vertices, i));
         },
         progress);
     return ao;

@@ -30,7 +30,10 @@ std::array<Perm, 24> kuhn_permutations() {
 class Marcher {
 public:
     Marcher(const Field& f, const Vec4& lo, const Vec4& hi, int cells) : lo_(lo), cells_(cells), n_(cells + 1) {
-        for (std::size_t a = 0; a < 4; ++a) h_[a] = (hi[a] - lo[a]) / cells;
+        for (std::size_t a = 0; a < 4; ++a) {
+            h_[a] = (hi[a] - lo[a]) / cells;
+            if (h_[a] < 0) axis_sign_ = -axis_sign_;
+        }
         stride_ = {1, n_, n_ * n_, n_ * n_ * n_};
         values_.resize(static_cast<std::size_t>(n_) * n_ * n_ * n_);
         for (std::int64_t l = 0; l < n_; ++l)
@@ -89,64 +92,120 @@ private:
         return it->second;
     }
 
-    void add_cell(Cell c, const Vec4& gradient) {
-        const Vec4& a = mesh_.vertices[c[0]];
-        // Every cell lies in the interpolant's zero set, so its normal is parallel to the gradient
-        // and this sign is never a close call.
-        if (dot(cross(mesh_.vertices[c[1]] - a, mesh_.vertices[c[2]] - a, mesh_.vertices[c[3]] - a), gradient) < 0)
-            std::swap(c[2], c[3]);
+    // Orientation is decided combinatorially, never from a close call on the cell's coordinates.
+    // Write each cell vertex as (1 - s) X + s Y on its pentatope edge (X, Y) and take F = few[0] (the
+    // lone vertex of the tetrahedron case, the apex of the prism's bottom triangle) as reference. The
+    // 5x5 determinant of the barycentric rows of (cell vertices, F) is multilinear in the rows, so it
+    // expands into one term per choice of an edge end for every row, nonzero only when the choices
+    // and F are the five pentatope vertices. Rows on F's edges must take their far ends (F is
+    // taken); in a prism a top vertex whose bottom partner is in the cell must then take few[1],
+    // and a cell never holds both ends of two vertical prism edges (those span a quad face), so one
+    // choice remains for every cell of either split. The determinant is thus a single monomial,
+    // +-prod(s or 1 - s) times the pentatope's volume: which side of F a cell faces does not depend
+    // on where along their edges its vertices sit, even kEdgeClamp-clamped ones. It is evaluated
+    // here at the edge midpoints, exactly, in doubled integer grid coordinates (the box's axis
+    // scaling only multiplies it by sign(h0 h1 h2 h3)). For unclamped vertices a cell lies in the
+    // interpolant's zero set, so facing away from the inside is facing along the gradient: outwards.
+    // Testing each cell's own normal against the interpolant's gradient instead fails where grid
+    // values are at or near zero: clamped vertices sit up to kEdgeClamp of an edge off the zero set,
+    // and the tiny cells around such a grid point then have normals far from the gradient.
+    using Local = std::array<std::int64_t, 4>;
+    void add_cell(Cell c, const std::array<std::array<int, 2>, 4>& edges, const std::array<Local, 5>& corner, int reference,
+                  bool reference_inside) {
+        std::array<Local, 4> m{};  // doubled midpoints of the cell's edges
+        for (std::size_t k = 0; k < 4; ++k)
+            for (std::size_t a = 0; a < 4; ++a)
+                m[k][a] = corner[static_cast<std::size_t>(edges[k][0])][a] + corner[static_cast<std::size_t>(edges[k][1])][a];
+        std::array<Local, 4> rows{};  // e1, e2, e3 and the reference relative to the first vertex
+        for (std::size_t a = 0; a < 4; ++a) {
+            for (std::size_t k = 0; k < 3; ++k) rows[k][a] = m[k + 1][a] - m[0][a];
+            rows[3][a] = 2 * corner[static_cast<std::size_t>(reference)][a] - m[0][a];
+        }
+        // dot(cross(e1, e2, e3), r) = det(r, e1, e2, e3) = -det(e1, e2, e3, r).
+        const std::int64_t side = -det4(rows) * axis_sign_;
+        if (side == 0) throw std::logic_error("marching: a cell parallel to its reference vertex");  // excluded above
+        // The normal must point away from an inside reference and towards an outside one.
+        if ((side > 0) == reference_inside) std::swap(c[2], c[3]);
         mesh_.cells.push_back(c);
+    }
+
+    static std::int64_t det4(const std::array<Local, 4>& r) {
+        // Laplace expansion along the first row; entries are small integers, so this is exact.
+        std::int64_t d = 0;
+        for (std::size_t j = 0; j < 4; ++j) {
+            std::array<std::size_t, 3> col{};
+            std::size_t n = 0;
+            for (std::size_t k = 0; k < 4; ++k)
+                if (k != j) col[n++] = k;
+            const std::int64_t minor = r[1][col[0]] * (r[2][col[1]] * r[3][col[2]] - r[2][col[2]] * r[3][col[1]]) -
+                                       r[1][col[1]] * (r[2][col[0]] * r[3][col[2]] - r[2][col[2]] * r[3][col[0]]) +
+                                       r[1][col[2]] * (r[2][col[0]] * r[3][col[1]] - r[2][col[1]] * r[3][col[0]]);
+            d += (j % 2 == 0 ? 1 : -1) * r[0][j] * minor;
+        }
+        return d;
     }
 
     void pentatope(std::int64_t base, const Perm& perm) {
         std::array<std::int64_t, 5> g{};
-        int corner = 0;
+        std::array<Local, 5> corner{};  // the Kuhn path in local integer coordinates
+        int bits = 0;
         g[0] = base;
         for (std::size_t k = 0; k < 4; ++k) {
-            corner |= 1 << perm[k];
-            g[k + 1] = base + offset(corner);
+            bits |= 1 << perm[k];
+            g[k + 1] = base + offset(bits);
+            corner[k + 1] = corner[k];
+            corner[k + 1][static_cast<std::size_t>(perm[k])] = 1;
         }
         std::array<int, 5> in{}, out{};
         int n_in = 0, n_out = 0;
         for (int k = 0; k < 5; ++k) (value(g[static_cast<std::size_t>(k)]) < 0 ? in[static_cast<std::size_t>(n_in++)] : out[static_cast<std::size_t>(n_out++)]) = k;
         if (n_in == 0 || n_out == 0) return;
-        // Along the Kuhn path each step moves along one axis, which gives the gradient directly.
-        Vec4 gradient;
-        for (std::size_t k = 0; k < 4; ++k)
-            gradient[static_cast<std::size_t>(perm[k])] = (value(g[k + 1]) - value(g[k])) / h_[static_cast<std::size_t>(perm[k])];
-        const auto& few = n_in < n_out ? in : out;
-        const auto& many = n_in < n_out ? out : in;
+        const bool few_inside = n_in < n_out;
+        const auto& few = few_inside ? in : out;
+        const auto& many = few_inside ? out : in;
         const auto gv = [&](int k) { return g[static_cast<std::size_t>(k)]; };
         if (std::min(n_in, n_out) == 1) {
-            add_cell({edge_vertex(gv(few[0]), gv(many[0])), edge_vertex(gv(few[0]), gv(many[1])),
-                      edge_vertex(gv(few[0]), gv(many[2])), edge_vertex(gv(few[0]), gv(many[3]))},
-                     gradient);
+            std::array<std::array<int, 2>, 4> edges{};
+            Cell c{};
+            for (std::size_t i = 0; i < 4; ++i) {
+                edges[i] = {few[0], many[i]};
+                c[i] = edge_vertex(gv(few[0]), gv(many[i]));
+            }
+            add_cell(c, edges, corner, few[0], few_inside);
             return;
         }
         // Prism: vertex i + 3 lies above vertex i, bottom triangle around few[0], top around few[1].
         std::array<std::uint32_t, 6> v{};
+        std::array<std::array<int, 2>, 6> edge{};
         for (std::size_t i = 0; i < 3; ++i) {
+            edge[i] = {few[0], many[i]};
+            edge[i + 3] = {few[1], many[i]};
             v[i] = edge_vertex(gv(few[0]), gv(many[i]));
             v[i + 3] = edge_vertex(gv(few[1]), gv(many[i]));
         }
         static constexpr int kRotate[6][6] = {{0, 1, 2, 3, 4, 5}, {1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4},
                                               {3, 5, 4, 0, 2, 1}, {4, 3, 5, 1, 0, 2}, {5, 4, 3, 2, 1, 0}};
         const auto lowest = static_cast<std::size_t>(std::min_element(v.begin(), v.end()) - v.begin());
-        std::array<std::uint32_t, 6> r{};
-        for (std::size_t i = 0; i < 6; ++i) r[i] = v[static_cast<std::size_t>(kRotate[lowest][i])];
-        if (std::min(r[1], r[5]) < std::min(r[2], r[4])) {
-            add_cell({r[0], r[1], r[2], r[5]}, gradient);
-            add_cell({r[0], r[1], r[5], r[4]}, gradient);
+        std::array<std::size_t, 6> r{};  // prism vertex numbers, rotated so that r[0] holds the lowest index
+        for (std::size_t i = 0; i < 6; ++i) r[i] = static_cast<std::size_t>(kRotate[lowest][i]);
+        const auto add = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t d) {
+            add_cell({v[r[a]], v[r[b]], v[r[c]], v[r[d]]}, {edge[r[a]], edge[r[b]], edge[r[c]], edge[r[d]]}, corner, few[0],
+                     few_inside);
+        };
+        if (std::min(v[r[1]], v[r[5]]) < std::min(v[r[2]], v[r[4]])) {
+            add(0, 1, 2, 5);
+            add(0, 1, 5, 4);
         } else {
-            add_cell({r[0], r[1], r[2], r[4]}, gradient);
-            add_cell({r[0], r[4], r[2], r[5]}, gradient);
+            add(0, 1, 2, 4);
+            add(0, 4, 2, 5);
         }
-        add_cell({r[0], r[4], r[5], r[3]}, gradient);
+        add(0, 4, 5, 3);
     }
 
     Vec4 lo_;
     Vec4 h_;
     std::int64_t cells_, n_;
+    std::int64_t axis_sign_ = 1;  // sign of h0 h1 h2 h3: a mirrored box mirrors every orientation
     std::array<std::int64_t, 4> stride_{};
     std::vector<double> values_;
     std::unordered_map<std::uint64_t, std::uint32_t> edges_;

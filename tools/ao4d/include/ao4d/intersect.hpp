@@ -20,8 +20,8 @@
 // closes the remaining rounding gaps. A ray test is five dot products. Rays within 1e-12 rad of
 // the hyperplane and cells whose 3-volume is below 1e-12 of their edge-length product are
 // treated as misses: such a cell has no area to hit, and its neighbours cover its surface.
-// tests/ao4d/intersect_test.cpp checks this against a pivoted Gaussian elimination, with
-// near-parallel rays and near-degenerate cells.
+// The Intersect tests in tests/ao4d/geometry_test.cpp check this against a pivoted Gaussian
+// elimination, with near-parallel rays and near-degenerate cells.
 #pragma once
 
 #include "ao4d/vec4.hpp"

@@ -28,7 +28,8 @@ struct Volume {
     std::vector<float> depth;  // distance along the ray to the first hit
 };
 
-// Voxel i is seeded with point_seed(ao.seed, i), so the volume is the same for any thread count.
+// Voxel i is seeded with point_seed(ao.seed, SeedStream::voxels, i), so the volume is the same for
+// any thread count.
 Volume render_volume(const Scene& scene, const CameraParams& camera, const AoParams& ao, const ProgressFn& progress = {});
 
 // VTK XML ImageData with "ao" and "depth" point arrays (raw appended Float32), which ParaView

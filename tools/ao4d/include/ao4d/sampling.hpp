@@ -23,9 +23,15 @@ private:
     std::uint64_t s_[4];
 };
 
-// The seed of one sample point (a voxel, a vertex, a line of a points file): results depend on the
-// run's seed and the point's index only, never on which thread got the point.
-std::uint64_t point_seed(std::uint64_t run_seed, std::uint64_t point_index);
+// The kinds of sample point, each with its own random stream: voxel i and vertex i of one run
+// must not reuse each other's directions.
+enum class SeedStream : std::uint64_t { points = 1, voxels = 2, vertices = 3 };
+
+// The seed of one sample point (a line of a points file, a voxel, a vertex): results depend on the
+// run's seed, the kind of point and its index only, never on which thread got the point. The three
+// are chained through splitmix64's bijective mixer, so within a stream distinct indices give
+// distinct seeds, and seeds of different streams or run seeds are unrelated.
+std::uint64_t point_seed(std::uint64_t run_seed, SeedStream stream, std::uint64_t point_index);
 
 // Uniform on S^3 by Marsaglia's (1972) method: two points uniform in the unit disk. Uniform
 // generalised spherical angles, as in the thesis, crowd the poles and are not uniform.

@@ -77,11 +77,13 @@ using ProgressFn = std::function<void(std::size_t done, std::size_t total)>;
 void parallel_for(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body,
                   const ProgressFn& progress = {});
 
-// AO of many points, point i seeded with point_seed(params.seed, i).
+// AO of many points, point i seeded with point_seed(params.seed, SeedStream::points, i).
 std::vector<double> ambient_occlusion(const Scene& scene, std::span<const OrientedPoint> points, const AoParams& params,
                                       const ProgressFn& progress = {});
 
-// AO of every vertex along its vertex normal, for the mesh output.
+// AO of every vertex along its vertex normal, for the mesh output; vertex i is seeded with
+// point_seed(params.seed, SeedStream::vertices, i). The rays start 1e-6 of the scene size off the
+// vertex along its normal, so that a surface the vertex rests on occludes it.
 std::vector<double> vertex_ambient_occlusion(const Scene& scene, const AoParams& params, const ProgressFn& progress = {});
 
 }  // namespace ao4d

@@ -18,8 +18,9 @@ using Field = std::function<double(const Vec4&)>;
 // pentatope the linear interpolant's zero set is a tetrahedron (1 or 4 vertices inside) or a
 // triangular prism (2 or 3 inside), the prism split into 3 tetrahedra with every quad face cut
 // through its lowest-numbered vertex (Dompierre et al. 1999) so that neighbours agree. Vertices on
-// grid edges are shared, cells are oriented with the interpolant's gradient (outwards), and f must
-// be positive on the box's boundary for the result to be closed.
+// grid edges are shared, cells are oriented outwards (away from the inside grid points, decided
+// exactly from the grid's combinatorics), and f must be positive on the box's boundary for the
+// result to be closed. A grid value < 0 is inside, >= 0 outside.
 TetMesh march(const Field& f, const Vec4& lo, const Vec4& hi, int cells);
 
 // Names accepted by make_shape, for --help and error messages.

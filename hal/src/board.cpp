@@ -154,6 +154,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     if (!parse_pixel_format(f.str("format", "auto"), c.format)) f.fail("format", "one of auto, mjpeg, yuyv, rgb24");
     c.buffers = static_cast<int>(f.integer("buffers", c.buffers, 2, 32));
     c.reopen_interval = std::chrono::milliseconds(f.integer("reopen_interval_ms", c.reopen_interval.count(), 100, 600000));
+    c.frame_timeout = std::chrono::milliseconds(f.integer("frame_timeout_ms", c.frame_timeout.count(), 100, 600000));
     b.camera = c;
   }
   if (const auto* t = table("mock")) {

@@ -1,6 +1,8 @@
 #include "button_logic.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace hal {
 
@@ -17,6 +19,9 @@ std::string_view to_string(ButtonAction a) {
 namespace detail {
 
 ButtonLogic::ButtonLogic(std::vector<ButtonTiming> timing) {
+  if (timing.size() > kMaxButtons)
+    throw std::invalid_argument("buttons: expected at most " + std::to_string(kMaxButtons) + ", got " +
+                                std::to_string(timing.size()));
   states_.resize(timing.size());
   for (std::size_t i = 0; i < timing.size(); ++i) states_[i].timing = timing[i];
 }
@@ -99,12 +104,47 @@ void ButtonLogic::advance(Nanos now) {
 }
 
 void ButtonLogic::push(std::size_t button, ButtonAction a, Nanos t) {
-  if (size_ == queue_.size()) {
-    ++dropped_;
-    return;
-  }
+  if (size_ == queue_.size()) evict_one();
   queue_[(head_ + size_) % queue_.size()] = ButtonEvent{static_cast<std::uint8_t>(button), a, t};
   ++size_;
+}
+
+void ButtonLogic::evict_one() {
+  const std::size_t n = queue_.size();
+  auto at = [&](std::size_t i) -> ButtonEvent& { return queue_[(head_ + i) % n]; };
+  // The cheapest loss first, the oldest of each kind:
+  //   a Repeat (another follows while the button is held), then a LongPress;
+  //   a Press whose Release is queued too (a whole click, already over);
+  //   a Release followed by another of its button with no Press between (the later one says the same);
+  //   last, a Press of a button still held.
+  // A Release that leaves its button up is never dropped. The last two passes run from the back to
+  // know what follows each event; none allocates.
+  constexpr std::size_t none = kMaxButtons + 1;
+  std::size_t repeat = none, long_press = none, click = none, repeated_release = none, press = none;
+  std::array<bool, kMaxButtons + 1> next_is_release{};  // of the events after i, per button
+  for (std::size_t i = size_; i-- > 0;) {
+    const ButtonEvent& e = at(i);
+    switch (e.action) {
+      case ButtonAction::Repeat: repeat = i; break;
+      case ButtonAction::LongPress: long_press = i; break;
+      case ButtonAction::Press:
+        if (next_is_release[e.button]) click = i;
+        press = i;
+        next_is_release[e.button] = false;
+        break;
+      case ButtonAction::Release:
+        if (next_is_release[e.button]) repeated_release = i;
+        next_is_release[e.button] = true;
+        break;
+    }
+  }
+  std::size_t victim = none;
+  for (const std::size_t candidate : {repeat, long_press, click, repeated_release, press})
+    if (victim == none) victim = candidate;
+  if (victim == none) victim = 0;  // unreachable: a full queue of Releases repeats some button's (see queue_)
+  for (std::size_t i = victim; i + 1 < size_; ++i) at(i) = at(i + 1);
+  --size_;
+  ++dropped_;
 }
 
 std::size_t ButtonLogic::drain(std::span<ButtonEvent> out) {

@@ -11,7 +11,9 @@ namespace hal::detail {
 
 class ButtonLogic {
 public:
+  // At most kMaxButtons buttons (ButtonEvent::button is 8 bits); throws std::invalid_argument otherwise.
   explicit ButtonLogic(std::vector<ButtonTiming> timing);
+  static constexpr std::size_t kMaxButtons = 255;
 
   // The initial debounced level, without an event (a button held at start-up is not a press).
   void set_initial(std::size_t button, bool pressed);
@@ -38,11 +40,15 @@ private:
   Nanos deadline(const State& s) const;
   void fire(std::size_t button, State& s);
   void push(std::size_t button, ButtonAction a, Nanos t);
+  void evict_one();
 
   std::vector<State> states_;
-  // A fixed ring so the event path never allocates; when full the newest events are dropped
-  // (counted), since the app reads every poll cycle and 64 events would be seconds of presses.
-  std::array<ButtonEvent, 64> queue_{};
+  // A fixed ring so the event path never allocates. The app reads every poll cycle, so it fills only
+  // when the app stalls for seconds; then push() evicts the least useful event (evict_one(), counted
+  // in dropped_), never a Release that leaves its button up: a lost Release would leave the app
+  // believing the button is still held. One slot more than there can be buttons means a full queue
+  // always holds something else to drop.
+  std::array<ButtonEvent, kMaxButtons + 1> queue_{};
   std::size_t head_ = 0;
   std::size_t size_ = 0;
   std::size_t dropped_ = 0;

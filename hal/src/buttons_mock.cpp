@@ -81,6 +81,13 @@ int MockButtons::fd() const { return impl_->timer.get(); }
 std::size_t MockButtons::count() const { return impl_->names.size(); }
 std::string_view MockButtons::name(std::size_t button) const { return impl_->names[button]; }
 
+std::size_t MockButtons::dropped() const { return impl_->logic.dropped(); }
+
+const std::string& MockButtons::last_error() const {
+  static const std::string none;
+  return none;
+}
+
 void MockButtons::inject(std::size_t button, bool pressed) {
   impl_->logic.edge(button, pressed, impl_->clock.now());
   detail::arm_timer(impl_->timer.get(), Nanos(1));  // wake the poll loop now

@@ -187,7 +187,8 @@ RgbImage make_test_scene(int width, int height, int scene, double t) {
   return img;
 }
 
-MockCamera::MockCamera(const std::vector<std::string>& image_files) : event_(detail::make_eventfd()) {
+MockCamera::MockCamera(const std::vector<std::string>& image_files, const Clock& clock, Nanos frame_interval)
+    : clock_(clock), interval_(frame_interval), timer_(detail::make_timer()) {
   for (const auto& f : image_files) {
     RgbImage img;
     std::string err;
@@ -195,39 +196,66 @@ MockCamera::MockCamera(const std::vector<std::string>& image_files) : event_(det
     files_.push_back(std::move(img));
   }
   if (files_.empty()) throw ConfigError("mock camera: expected at least one image file");
-  detail::signal_eventfd(event_.get());
+  arm(next_frame_ = clock_.now());
 }
 
-MockCamera::MockCamera(CameraModel model) : model_(model), synthetic_(true), event_(detail::make_eventfd()) {}
+MockCamera::MockCamera(CameraModel model, const Clock& clock, Nanos frame_interval)
+    : model_(model), synthetic_(true), clock_(clock), interval_(frame_interval), timer_(detail::make_timer()) {}
+
+void MockCamera::arm(Nanos at) { detail::arm_timer(timer_.get(), at); }
 
 void MockCamera::show(const RgbImage& displayed) {
+  const bool first = displayed_.empty();
   displayed_ = displayed;
-  if (state_ == CameraState::Streaming) detail::signal_eventfd(event_.get());
+  // Until now there was nothing to film and the timer was idle; from now on frames come.
+  if (first && state_ == CameraState::Streaming) arm(next_frame_ = std::max(next_frame_, clock_.now()));
 }
 
 void MockCamera::unplug() {
   plugged_ = false;
   state_ = CameraState::Lost;
   error_ = "mock camera: No such device (unplugged)";
-  detail::signal_eventfd(event_.get());
+  arm(clock_.now());  // wake the loop once, so it sees the state; read_frame()/service() disarm it
 }
 
-void MockCamera::replug() { plugged_ = true; }
+void MockCamera::replug() {
+  plugged_ = true;
+  arm(clock_.now());  // a reopen is due: service() brings it back
+}
 
-int MockCamera::fd() const { return event_.get(); }
+int MockCamera::fd() const { return timer_.get(); }
 
 void MockCamera::service() {
-  if (state_ == CameraState::Lost && plugged_) {
-    state_ = CameraState::Streaming;
-    error_.clear();
-    detail::signal_eventfd(event_.get());
+  if (state_ != CameraState::Lost) return;
+  detail::drain(timer_.get());
+  if (!plugged_) {
+    arm(Nanos::max());  // nothing to retry until replug()
+    return;
   }
+  state_ = CameraState::Streaming;
+  error_.clear();
+  next_frame_ = clock_.now();
+  arm(has_source() ? next_frame_ : Nanos::max());
 }
 
 bool MockCamera::read_frame(RgbImage& out) {
   if (state_ != CameraState::Streaming) return false;
+  // Draining before the check keeps fd() readable only while a frame is due: no spinning loop.
+  detail::drain(timer_.get());
+  const Nanos now = clock_.now();
+  if (!has_source()) {
+    arm(Nanos::max());
+    return false;
+  }
+  if (now < next_frame_) {
+    arm(next_frame_);
+    return false;
+  }
+  // Frames the app did not read in time are gone, as with a camera's ring of buffers.
+  next_frame_ += interval_;
+  if (next_frame_ <= now) next_frame_ = now + interval_;
+  arm(next_frame_);
   if (synthetic_) {
-    if (displayed_.empty()) return false;
     synthesize_capture(displayed_, model_, frame_++, out);
     return true;
   }

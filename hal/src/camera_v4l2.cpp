@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "camera_schedule.h"
 #include "fd.h"
 #include "hal/convert.h"
 #include "hal/devices.h"
@@ -46,10 +47,17 @@ std::string fourcc_text(std::uint32_t f) {
 
 class V4l2Camera final : public Camera {
 public:
-  explicit V4l2Camera(const CameraConfig& config)
-      : config_(config), epoll_(detail::make_epoll()), reopen_timer_(detail::make_timer()) {
-    detail::epoll_watch(epoll_.get(), reopen_timer_.get());
-    if (!open_device()) lose();
+  V4l2Camera(const CameraConfig& config, const Clock& clock)
+      : config_(config),
+        clock_(clock),
+        schedule_(config.reopen_interval, config.frame_timeout),
+        epoll_(detail::make_epoll()),
+        timer_(detail::make_timer()) {
+    // One timer for both deadlines: the reopen while lost, the no-frame check while streaming.
+    detail::epoll_watch(epoll_.get(), timer_.get());
+    if (open_device()) schedule_.opened(clock_.now());
+    else lose();
+    arm();
   }
   ~V4l2Camera() override { teardown(); }
 
@@ -58,15 +66,25 @@ public:
   const std::string& last_error() const override { return error_; }
 
   void service() override {
-    if (state_ != CameraState::Lost) return;
-    std::uint64_t expirations = 0;
-    if (::read(reopen_timer_.get(), &expirations, sizeof expirations) != sizeof expirations) return;  // not due
-    if (open_device()) {
-      detail::arm_timer(reopen_timer_.get(), Nanos::max());
-      error_.clear();
-    } else {
+    // The decisions read the clock, not the timer, so a manual clock drives them; the timer only
+    // wakes the loop and is re-armed from the schedule every time.
+    detail::drain(timer_.get());
+    const Nanos now = clock_.now();
+    if (state_ == CameraState::Streaming && schedule_.stalled(now)) {
+      const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now - schedule_.last_frame()).count();
+      error_ = config_.device + ": no usable frame for " + std::to_string(ms) + " ms (camera.frame_timeout_ms = " +
+               std::to_string(config_.frame_timeout.count()) + ")" + (error_.empty() ? "" : "; last error: " + error_) +
+               "; reopening";
       lose();
+    } else if (state_ == CameraState::Lost && schedule_.reopen_due(now)) {
+      if (open_device()) {
+        error_.clear();
+        schedule_.opened(now);
+      } else {
+        lose();
+      }
     }
+    arm();
   }
 
   bool read_frame(RgbImage& out) override {
@@ -79,30 +97,49 @@ public:
       fail("VIDIOC_DQBUF", errno);
       return false;
     }
-    bool ok = (buf.flags & V4L2_BUF_FLAG_ERROR) == 0 && buf.index < buffers_.size();
+    // A bad frame is skipped (the next one is usually fine) but kept as the last error. Built only on
+    // failure: the frame path does not allocate.
+    auto frame_error = [&](const std::string& what) {
+      error_ = config_.device + ": frame " + std::to_string(buf.sequence) + ": " + what;
+    };
+    bool ok = false;
+    if (buf.flags & V4L2_BUF_FLAG_ERROR) frame_error("the driver flagged it as corrupt");
+    else if (buf.index >= buffers_.size()) frame_error("buffer index " + std::to_string(buf.index) + " out of range");
+    else ok = true;
     if (ok) {
       const auto* data = static_cast<const std::uint8_t*>(buffers_[buf.index].get());
       const std::span<const std::uint8_t> bytes(data, buf.bytesused);
       out.resize(width_, height_);
+      const std::size_t expected = static_cast<std::size_t>(stride_) * height_;
       switch (pixfmt_) {
         case V4L2_PIX_FMT_YUYV:
-          ok = bytes.size() >= static_cast<std::size_t>(stride_) * height_;
-          if (ok) yuyv_to_rgb(bytes, width_, height_, stride_, out);
-          break;
         case V4L2_PIX_FMT_RGB24:
-          ok = bytes.size() >= static_cast<std::size_t>(stride_) * height_;
-          for (int y = 0; ok && y < height_; ++y)
-            std::memcpy(out.at(0, y), data + static_cast<std::size_t>(y) * stride_, static_cast<std::size_t>(width_) * 3);
+          ok = bytes.size() >= expected;
+          if (!ok) {
+            frame_error("expected at least " + std::to_string(expected) + " bytes, got " + std::to_string(bytes.size()));
+          } else if (pixfmt_ == V4L2_PIX_FMT_YUYV) {
+            yuyv_to_rgb(bytes, width_, height_, stride_, out);
+          } else {
+            const auto row = static_cast<std::size_t>(width_) * 3;
+            for (int y = 0; y < height_; ++y)
+              std::memcpy(out.at(0, y), data + static_cast<std::size_t>(y) * stride_, row);
+          }
           break;
-        default:  // MJPEG; a corrupt frame is skipped, the next one is usually fine
-          ok = mjpeg_.decode(bytes, out, nullptr);
+        default: {  // MJPEG
+          std::string why;  // written only on failure
+          ok = mjpeg_.decode(bytes, out, &why);
+          if (!ok) frame_error(why);
           break;
+        }
       }
     }
     if (xioctl(dev_.get(), VIDIOC_QBUF, &buf) != 0) {
       fail("VIDIOC_QBUF", errno);
       return false;
     }
+    // Only a usable frame proves the stream alive: a camera sending nothing but corrupt frames is
+    // reopened like a silent one.
+    if (ok) schedule_.frame(clock_.now());
     return ok;
   }
 
@@ -152,8 +189,12 @@ private:
     req.count = static_cast<std::uint32_t>(config_.buffers);
     req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     req.memory = V4L2_MEMORY_MMAP;
-    if (xioctl(dev_.get(), VIDIOC_REQBUFS, &req) != 0 || req.count < 2)
-      return set_error(path + ": VIDIOC_REQBUFS: expected at least 2 mmap buffers: " + detail::errno_text(errno));
+    if (xioctl(dev_.get(), VIDIOC_REQBUFS, &req) != 0)
+      return set_error(path + ": VIDIOC_REQBUFS (" + std::to_string(config_.buffers) + " mmap buffers): " +
+                       detail::errno_text(errno));
+    if (req.count < 2)
+      return set_error(path + ": VIDIOC_REQBUFS: expected at least 2 mmap buffers, the driver granted " +
+                       std::to_string(req.count));
     for (std::uint32_t i = 0; i < req.count; ++i) {
       v4l2_buffer buf{};
       buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
@@ -192,8 +233,11 @@ private:
   void lose() {
     teardown();
     state_ = CameraState::Lost;
-    detail::arm_timer(reopen_timer_.get(), MonotonicClock().now() + config_.reopen_interval);
+    schedule_.lost(clock_.now());
+    arm();
   }
+
+  void arm() { detail::arm_timer(timer_.get(), schedule_.deadline()); }
 
   void teardown() {
     if (dev_) {
@@ -210,8 +254,10 @@ private:
   }
 
   CameraConfig config_;
+  const Clock& clock_;
+  detail::CameraSchedule schedule_;
   UniqueFd epoll_;
-  UniqueFd reopen_timer_;
+  UniqueFd timer_;
   UniqueFd dev_;
   std::vector<Mapping> buffers_;
   bool streaming_ = false;
@@ -224,6 +270,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Camera> open_v4l2_camera(const CameraConfig& config) { return std::make_unique<V4l2Camera>(config); }
+std::unique_ptr<Camera> open_v4l2_camera(const CameraConfig& config, const Clock& clock) {
+  return std::make_unique<V4l2Camera>(config, clock);
+}
 
 }  // namespace hal

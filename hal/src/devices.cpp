@@ -35,7 +35,7 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
     d.status = std::make_unique<Status>(led_names, open_gpio_leds(board.leds, board.consumer, d.problems), clock,
                                         board.status_file);
     if (board.camera) {
-      d.camera = open_v4l2_camera(*board.camera);
+      d.camera = open_v4l2_camera(*board.camera, clock);
       if (d.camera->state() != CameraState::Streaming) d.problems.push_back("camera: " + d.camera->last_error());
     }
     return d;
@@ -55,9 +55,9 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
   d.status = std::make_unique<Status>(led_names, std::make_unique<RecordingLedSink>(clock, led_names.size()), clock,
                                       board.status_file);
   if (!board.mock_camera_images.empty()) {
-    d.camera = std::make_unique<MockCamera>(board.mock_camera_images);
+    d.camera = std::make_unique<MockCamera>(board.mock_camera_images, clock);
   } else if (board.camera) {
-    d.camera = std::make_unique<MockCamera>(typical_camera_model());
+    d.camera = std::make_unique<MockCamera>(typical_camera_model(), clock);
   }
   return d;
 }

@@ -1,7 +1,6 @@
 #include "fd.h"
 
 #include <sys/epoll.h>
-#include <sys/eventfd.h>
 #include <sys/timerfd.h>
 #include <unistd.h>
 
@@ -33,17 +32,6 @@ void drain(int fd) {
   std::uint64_t count = 0;
   while (::read(fd, &count, sizeof count) == static_cast<ssize_t>(sizeof count)) {
   }
-}
-
-UniqueFd make_eventfd() {
-  UniqueFd fd(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC));
-  if (!fd) throw std::system_error(errno, std::generic_category(), "eventfd");
-  return fd;
-}
-
-void signal_eventfd(int fd) {
-  const std::uint64_t one = 1;
-  [[maybe_unused]] auto n = ::write(fd, &one, sizeof one);
 }
 
 UniqueFd make_epoll() {

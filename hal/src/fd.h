@@ -1,5 +1,5 @@
 #pragma once
-// Timer, event and epoll descriptors shared by the devices. Each device gives the app one fd; where a
+// Timer and epoll descriptors shared by the devices. Each device gives the app one fd; where a
 // device has several sources (one per GPIO line plus a timer) they are gathered in an epoll set,
 // which is itself pollable.
 #include <string>
@@ -14,10 +14,7 @@ UniqueFd make_timer();
 // Arms `fd` to fire at absolute monotonic time `at` (a time already past fires at once);
 // Nanos::max() disarms it.
 void arm_timer(int fd, Nanos at);
-void drain(int fd);  // reads a timerfd/eventfd counter so it stops being readable
-
-UniqueFd make_eventfd();
-void signal_eventfd(int fd);
+void drain(int fd);  // reads a timerfd counter so it stops being readable
 
 UniqueFd make_epoll();
 void epoll_watch(int epoll_fd, int fd);

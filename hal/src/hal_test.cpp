@@ -2,7 +2,9 @@
 
 #include <poll.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 
 #include "hal/devices.h"
@@ -59,10 +61,19 @@ double seconds(Nanos t) { return std::chrono::duration<double>(t).count(); }
 
 int run_hal_test(const HalTestOptions& options, std::ostream& out) {
   Backend backend;
-  if (!parse_backend(options.backend, backend)) {
+  std::string why;
+  if (options.backend.empty()) {
+    backend = options.board_file.empty() ? Backend::Mock : Backend::Linux;
+    why = options.board_file.empty() ? "no --board: the built-in mock board"
+                                     : "--board without --hal; --hal mock simulates the board";
+  } else if (parse_backend(options.backend, backend)) {
+    why = "--hal " + options.backend;
+  } else {
     out << "hal-test: --hal: expected 'linux' or 'mock', got '" << options.backend << "'\n";
     return 1;
   }
+  out << "backend: " << (backend == Backend::Linux ? "linux" : "mock") << " (" << why << ")\n";
+
   MonotonicClock clock;
   BoardConfig board;
   Devices dev;
@@ -79,33 +90,41 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
     return 1;
   }
 
-  out << "board: " << (board.name.empty() ? board.source : board.name) << " (" << options.backend << ")\n";
+  out << "board: " << (board.name.empty() ? board.source : board.name) << "\n";
   for (std::size_t i = 0; i < dev.buttons->count(); ++i) out << "  button " << dev.buttons->name(i) << "\n";
   for (std::size_t i = 0; i < dev.status->led_count(); ++i) out << "  led " << dev.status->led_name(i) << "\n";
   for (const auto& p : dev.problems) out << "  MISSING: " << p << "\n";
   out << "listening to buttons for " << options.duration_s << " s, cycling LEDs\n" << std::flush;
 
+  // Each step lights one LED in one pattern for a full period of the slowest pattern, so a slow
+  // blink or a heartbeat is seen whole and each LED can be told from the others.
   constexpr std::array kPatterns{LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat};
+  Nanos step_len = std::chrono::milliseconds(500);
+  for (LedPattern p : kPatterns)
+    if (pattern_period(p) != Nanos::max()) step_len = std::max(step_len, pattern_period(p));
+  const std::size_t leds = dev.status->led_count();
+  const std::size_t steps = leds * kPatterns.size();
   const Nanos start = clock.now();
   const Nanos end = start + std::chrono::duration_cast<Nanos>(std::chrono::duration<double>(options.duration_s));
-  const Nanos step_len = std::chrono::milliseconds(700);
   std::size_t step = 0;
-  Nanos next_step = start;
+  Nanos next_step = leds > 0 ? start : Nanos::max();  // no LEDs: nothing to wake for but buttons
   std::array<ButtonEvent, 16> events;
   int event_count = 0;
-  while (clock.now() < end) {
-    if (dev.status->led_count() > 0 && clock.now() >= next_step) {
-      const std::size_t led = step % dev.status->led_count();
-      const LedPattern p = kPatterns[(step / dev.status->led_count()) % kPatterns.size()];
-      for (std::size_t i = 0; i < dev.status->led_count(); ++i) dev.status->set_pattern(i, i == led ? p : LedPattern::Off);
-      out << "[" << seconds(clock.now() - start) << " s] led " << dev.status->led_name(led) << " -> " << to_string(p)
-          << "\n";
+  for (Nanos now = clock.now(); now < end; now = clock.now()) {
+    if (now >= next_step) {
+      const std::size_t led = step % leds;
+      const LedPattern p = kPatterns[(step / leds) % kPatterns.size()];
+      for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, i == led ? p : LedPattern::Off);
+      out << "[" << seconds(now - start) << " s] led " << dev.status->led_name(led) << " -> " << to_string(p) << "\n";
       ++step;
-      next_step += step_len;
+      next_step = now + step_len;
+      continue;
     }
-    std::array<pollfd, 3> fds{{{dev.buttons->fd(), POLLIN, 0}, {dev.status->fd(), POLLIN, 0}, {-1, POLLIN, 0}}};
-    const Nanos wait = std::min(end, next_step) - clock.now();
-    poll(fds.data(), fds.size(), std::max(0, static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(wait).count()) + 1));
+    std::array<pollfd, 2> fds{{{dev.buttons->fd(), POLLIN, 0}, {dev.status->fd(), POLLIN, 0}}};
+    // Rounded up, so the loop wakes at or after the deadline rather than spinning just before it.
+    const Nanos wait = std::min(end, next_step) - now;
+    const auto ms = std::chrono::ceil<std::chrono::milliseconds>(wait).count();
+    poll(fds.data(), fds.size(), static_cast<int>(std::min<long long>(ms, 60'000)));
     if (fds[1].revents & POLLIN) dev.status->update();
     for (std::size_t n; (n = dev.buttons->read(events)) > 0;) {
       for (std::size_t i = 0; i < n; ++i, ++event_count)
@@ -113,20 +132,36 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
             << to_string(events[i].action) << "\n";
     }
   }
-  for (std::size_t i = 0; i < dev.status->led_count(); ++i) dev.status->set_pattern(i, LedPattern::Off);
+  for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, LedPattern::Off);
   out << event_count << " button events\n";
+  if (leds > 0 && step < steps) {
+    const double needed = seconds(step_len) * static_cast<double>(steps);
+    out << "leds: showed " << step << " of " << steps << " LED patterns; --duration " << std::ceil(needed)
+        << " shows them all\n";
+  }
 
   StatusReport report;
   report.state = "hal-test";
   report.errors = dev.problems;
   bool ok = dev.problems.empty();
+  // Failures while running: a line whose chip went away, an LED that could not be driven.
+  for (const std::string* e : {&dev.buttons->last_error(), &dev.status->led_error()}) {
+    if (e->empty()) continue;
+    out << "FAILED: " << *e << "\n";
+    report.errors.push_back(*e);
+    ok = false;
+  }
+  if (dev.buttons->dropped() > 0)
+    out << "buttons: " << dev.buttons->dropped() << " events dropped (the loop did not read them in time)\n";
   if (!dev.camera) {
     out << "camera: none on this board\n";
   } else {
-    // The mock camera looks at a synthetic frame with check markers, so the self-check runs end to end.
+    // The synthetic mock camera films whatever it is shown: given a frame with check markers, the
+    // self-check runs end to end. A real camera films the real display, which hal-test does not drive.
     RgbImage presented;
     FiducialLayout layout;
-    if (auto* mock = dynamic_cast<MockCamera*>(dev.camera.get())) {
+    auto* mock = dynamic_cast<MockCamera*>(dev.camera.get());
+    if (mock && board.mock_camera_images.empty()) {
       presented = make_test_scene(640, 360, 1, 0.0);
       layout = FiducialLayout::for_display(presented.width, presented.height, 0);
       draw_fiducials(presented, layout);
@@ -152,6 +187,11 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
         out << "self-check: " << (r.passed ? "pass" : "FAIL") << " score " << r.score << " (" << r.reason << ")\n";
         report.last_check = CheckSummary{r.passed, r.score, r.reason, clock.now()};
         ok = ok && r.passed;
+      } else if (mock) {
+        out << "self-check: not run: the mock camera plays image files, not a frame hal-test presented\n";
+      } else {
+        out << "self-check: not run: it compares the capture with the frame on the display, and hal-test has no "
+               "display output yet; look at the saved capture instead\n";
       }
     }
   }

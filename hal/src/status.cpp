@@ -81,6 +81,13 @@ Nanos pattern_next_change(LedPattern p, Nanos elapsed) {
   return period_start + s.period;
 }
 
+Nanos pattern_period(LedPattern p) { return shape(p).period; }
+
+const std::string& LedSink::last_error() const {
+  static const std::string none;
+  return none;
+}
+
 void RecordingLedSink::set(std::size_t led, bool on) {
   if (levels_[led] == on) return;
   levels_[led] = on;

@@ -98,8 +98,9 @@ int main(int argc, char** argv) {
   hal::HalTestOptions hal_test;
   auto* hal_cmd = cli.add_subcommand("hal-test",
                                      "Wiring check for a new board: print button events, cycle the LEDs, capture a frame and save it");
-  hal_cmd->add_option("--board", hal_test.board_file, "Board description (TOML, see board/); default: a built-in mock board");
-  hal_cmd->add_option("--hal", hal_test.backend, "Hardware backend")->check(CLI::IsMember({"linux", "mock"}))->capture_default_str();
+  hal_cmd->add_option("--board", hal_test.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
+  hal_cmd->add_option("--hal", hal_test.backend, "Hardware backend: linux or mock; default linux with --board, mock without")
+      ->check(CLI::IsMember({"linux", "mock"}));
   hal_cmd->add_option("--capture", hal_test.capture_path, "Where to save the captured frame")->capture_default_str();
   hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();

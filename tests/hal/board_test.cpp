@@ -45,6 +45,7 @@ device = "/dev/v4l/by-id/usb-cam-video-index0"
 format = "yuyv"
 width = 640
 height = 480
+frame_timeout_ms = 500
 [mock]
 button_script = "buttons.script"
 )", "/etc/player/board.toml");
@@ -59,6 +60,8 @@ button_script = "buttons.script"
   ASSERT_TRUE(b.camera.has_value());
   EXPECT_EQ(b.camera->format, PixelFormat::Yuyv);
   EXPECT_EQ(b.camera->width, 640);
+  EXPECT_EQ(b.camera->frame_timeout, std::chrono::milliseconds(500));
+  EXPECT_EQ(b.camera->reopen_interval, std::chrono::milliseconds(2000));
   EXPECT_EQ(b.mock_button_script, "/etc/player/buttons.script");
   EXPECT_EQ(b.status_file, "/run/x/status.json");
 }
@@ -72,6 +75,8 @@ TEST(Board, ErrorsNameFileFieldAndExpectation) {
   EXPECT_EQ(error_of("[camera]\ndevice = \"/dev/video0\"\nformat = \"h264\"\n"),
             "b.toml: camera.format: expected one of auto, mjpeg, yuyv, rgb24, got string");
   EXPECT_EQ(error_of("[camera]\nwidth = 640\n"), "b.toml: camera.device: expected a string, got nothing");
+  EXPECT_EQ(error_of("[camera]\ndevice = \"/dev/video0\"\nframe_timeout_ms = 0\n"),
+            "b.toml: camera.frame_timeout_ms: expected an integer in 100..600000, got integer");
   EXPECT_EQ(error_of("button = 3\n"), "b.toml: button: expected an array of tables ([[button]]), got integer");
   EXPECT_EQ(error_of("[board\n").rfind("b.toml:1:", 0), 0u);
   EXPECT_THROW(load_board("/nonexistent/board.toml"), ConfigError);

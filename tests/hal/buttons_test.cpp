@@ -1,6 +1,7 @@
 // Debounce, long press and auto-repeat, driven by a script and a manual clock.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 #include "hal/board.h"
@@ -83,6 +84,81 @@ TEST(Buttons, AutoRepeatStartsAfterDelayAndStopsOnRelease) {
                                                    {"next", ButtonAction::Repeat, 500},
                                                    {"next", ButtonAction::Repeat, 600},
                                                    {"next", ButtonAction::Release, 650}}));
+}
+
+TEST(Buttons, LongPressAndAutoRepeatTogetherOnOneButton) {
+  ManualClock clock;
+  MockButtons b({{"next", timing(10, 800, 400, 100)}}, parse_button_script("0 next press\n1050 next release\n", "s"),
+                clock);
+  // Repeats keep their rhythm through the long press; at a tie the long press comes first.
+  EXPECT_EQ(run(b, clock, 1300), (std::vector<Rec>{{"next", ButtonAction::Press, 0},
+                                                   {"next", ButtonAction::Repeat, 400},
+                                                   {"next", ButtonAction::Repeat, 500},
+                                                   {"next", ButtonAction::Repeat, 600},
+                                                   {"next", ButtonAction::Repeat, 700},
+                                                   {"next", ButtonAction::LongPress, 800},
+                                                   {"next", ButtonAction::Repeat, 800},
+                                                   {"next", ButtonAction::Repeat, 900},
+                                                   {"next", ButtonAction::Repeat, 1000},
+                                                   {"next", ButtonAction::Release, 1050}}));
+  EXPECT_EQ(b.dropped(), 0u);
+}
+
+// Reads everything queued in one go, as an app that stalled would.
+std::vector<ButtonEvent> read_all(Buttons& b) {
+  std::vector<ButtonEvent> all;
+  std::array<ButtonEvent, 64> ev;
+  for (std::size_t n; (n = b.read(ev)) > 0;) all.insert(all.end(), ev.begin(), ev.begin() + static_cast<long>(n));
+  return all;
+}
+
+TEST(Buttons, FullQueueDropsRepeatsFirstKeepsPressLongPressAndRelease) {
+  ManualClock clock;
+  // Held 5 s with a repeat every 10 ms: about 500 events, far more than the queue holds.
+  MockButtons b({{"next", timing(1, 800, 10, 10)}}, parse_button_script("0 next press\n5000 next release\n", "s"),
+                clock);
+  clock.set(milliseconds(6000));
+  const std::vector<ButtonEvent> got = read_all(b);
+  // At 10, 20, ... 5000: the release counts only once its 1 ms debounce has passed.
+  const std::size_t repeats = (5000 - 10) / 10 + 1;
+  const std::size_t produced = repeats + 3;          // press, long press, release
+  ASSERT_EQ(got.size(), 256u);
+  EXPECT_EQ(b.dropped(), produced - got.size());
+  EXPECT_EQ(got.front().action, ButtonAction::Press);
+  EXPECT_EQ(got[1].action, ButtonAction::LongPress);
+  EXPECT_EQ(got.back().action, ButtonAction::Release);
+  EXPECT_EQ(got.back().time, milliseconds(5000));
+  for (std::size_t i = 2; i + 1 < got.size(); ++i) EXPECT_EQ(got[i].action, ButtonAction::Repeat) << i;
+  // The oldest repeats went: the ones kept are the latest, still in time order.
+  EXPECT_EQ(got[got.size() - 2].time, milliseconds(5000));
+  EXPECT_EQ(got[2].time, milliseconds(5000 - 10 * 252));
+  for (std::size_t i = 1; i < got.size(); ++i) EXPECT_LE(got[i - 1].time, got[i].time) << i;
+}
+
+TEST(Buttons, FullQueueNeverLeavesAButtonLookingHeld) {
+  ManualClock clock;
+  // 300 clicks of "a" while "b" is held: 601 events. Whole clicks go first; once only Releases of
+  // "a" are left, one that another follows is dropped. The Press of the held "b" stays.
+  std::string script = "0 b press\n";
+  for (int i = 0; i < 300; ++i)
+    script += std::to_string(10 + 10 * i) + " a press\n" + std::to_string(15 + 10 * i) + " a release\n";
+  MockButtons b({{"a", timing(1, 0)}, {"b", timing(1, 0)}}, parse_button_script(script, "s"), clock);
+  clock.set(milliseconds(10000));
+  const std::vector<ButtonEvent> got = read_all(b);
+  EXPECT_EQ(got.size() + b.dropped(), 601u);
+  EXPECT_GT(b.dropped(), 0u);
+  // Replaying what the app saw: "a" ends released, "b" (never released) ends held.
+  std::array<bool, 2> held{};
+  for (const ButtonEvent& e : got) {
+    if (e.action == ButtonAction::Press) held[e.button] = true;
+    if (e.action == ButtonAction::Release) held[e.button] = false;
+  }
+  EXPECT_FALSE(held[0]);
+  EXPECT_TRUE(held[1]);
+  EXPECT_EQ(got.front().button, 1);
+  EXPECT_EQ(got.back().action, ButtonAction::Release);
+  EXPECT_EQ(got.back().time, milliseconds(15 + 10 * 299));
+  for (std::size_t i = 1; i < got.size(); ++i) EXPECT_LE(got[i - 1].time, got[i].time) << i;
 }
 
 TEST(Buttons, EventsOfSeveralButtonsComeOutInTimeOrderEvenWhenReadLate) {

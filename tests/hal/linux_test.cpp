@@ -1,9 +1,16 @@
 // Linux backends: error paths everywhere; real devices only where the kernel's simulators exist.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <linux/gpio.h>
+#include <poll.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <filesystem>
+#include <fstream>
 
+#include "camera_schedule.h"
+#include "gpio_devices.h"
 #include "hal/devices.h"
 #include "hal/mock.h"
 
@@ -45,11 +52,136 @@ TEST(LinuxGpio, MissingLedIsNamedAndSettingItIsHarmless) {
   leds->set(5, true);
 }
 
+using std::chrono::milliseconds;
+
+bool readable(int fd) {
+  pollfd p{fd, POLLIN, 0};
+  return poll(&p, 1, 0) == 1;
+}
+
+// A libgpiod v1 line event fd stands in as a pipe: the kernel's event records written into one end.
+// Closing the writer gives what a removed chip gives: a fd that is always ready and fails to read
+// (EOF reads as EIO through libgpiod; ENODEV from a real chip takes the same path).
+TEST(LinuxGpio, FailedEventFdLeavesThePollSetReleasesTheButtonAndIsReported) {
+  ManualClock clock(milliseconds(1000));
+  detail::EdgeButtons b({"play"}, {ButtonTiming{milliseconds(20), Nanos{0}, Nanos{0}, milliseconds(100)}}, clock);
+  int p[2];
+  ASSERT_EQ(pipe(p), 0);
+  b.watch(0, p[0], false, "line GPIO17");
+  std::array<ButtonEvent, 4> ev;
+  EXPECT_EQ(b.read(ev), 0u);
+  EXPECT_TRUE(b.last_error().empty());
+
+  gpioevent_data rising{};
+  rising.timestamp = static_cast<std::uint64_t>(Nanos(milliseconds(900)).count());
+  rising.id = GPIOEVENT_EVENT_RISING_EDGE;
+  ASSERT_EQ(write(p[1], &rising, sizeof rising), static_cast<ssize_t>(sizeof rising));
+  close(p[1]);
+  EXPECT_TRUE(readable(b.fd()));
+
+  // The edge is read, then the fd fails: it leaves the poll set and the held button is let go.
+  ASSERT_EQ(b.read(ev), 1u);
+  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].time, milliseconds(900));
+  EXPECT_EQ(b.last_error(),
+            "button 'play': GPIO line GPIO17: reading edge events: Input/output error; button disabled");
+  clock.advance(milliseconds(100));
+  ASSERT_EQ(b.read(ev), 1u);
+  EXPECT_EQ(ev[0].action, ButtonAction::Release);
+  EXPECT_EQ(ev[0].time, milliseconds(1000));
+  // Nothing due and the dead fd gone: poll() sleeps instead of spinning.
+  EXPECT_FALSE(readable(b.fd()));
+  EXPECT_EQ(b.read(ev), 0u);
+  close(p[0]);
+}
+
+// GpioLeds' failure handling with the line write faked: the chip vanishes under LED 1.
+class FlakyLeds final : public detail::OutputLeds {
+public:
+  FlakyLeds() : OutputLeds({"LED 'status' (GPIO line GPIO23)", "LED 'error' (GPIO line GPIO24)"}) {}
+  std::vector<std::pair<std::size_t, bool>> writes;
+  bool chip_gone = false;
+
+private:
+  int write(std::size_t led, bool on) override {
+    if (led == 1 && chip_gone) return ENODEV;
+    writes.push_back({led, on});
+    return 0;
+  }
+};
+
+TEST(LinuxGpio, FailingLedIsReportedOnceAndTheOthersRunOn) {
+  ManualClock clock;
+  auto sink = std::make_unique<FlakyLeds>();
+  FlakyLeds& leds = *sink;
+  Status status({"status", "error"}, std::move(sink), clock, "");
+  status.set_pattern(0, LedPattern::BlinkFast);
+  status.set_pattern(1, LedPattern::BlinkFast);
+  EXPECT_TRUE(status.led_error().empty());
+  leds.chip_gone = true;
+  leds.writes.clear();
+  for (int i = 0; i < 5; ++i) {
+    clock.advance(milliseconds(100));
+    status.update();
+  }
+  EXPECT_EQ(status.led_error(),
+            "LED 'error' (GPIO line GPIO24): set value: No such device (chip removed?); LED disabled");
+  // LED 0 blinked on through every edge; LED 1 was not written again after it failed.
+  using Writes = std::vector<std::pair<std::size_t, bool>>;
+  EXPECT_EQ(leds.writes, (Writes{{0, false}, {0, true}, {0, false}, {0, true}, {0, false}}));
+}
+
+TEST(CameraSchedule, StreamWithoutFramesStallsThenReopensPeriodically) {
+  detail::CameraSchedule s(milliseconds(2000), milliseconds(500));
+  s.opened(milliseconds(10'000));
+  EXPECT_EQ(s.deadline(), milliseconds(10'500));
+  s.frame(milliseconds(10'400));
+  EXPECT_FALSE(s.stalled(milliseconds(10'899)));
+  EXPECT_EQ(s.deadline(), milliseconds(10'900));
+  EXPECT_TRUE(s.stalled(milliseconds(10'900)));
+  EXPECT_FALSE(s.reopen_due(milliseconds(10'900)));  // streaming: nothing to reopen
+  s.lost(milliseconds(10'900));
+  EXPECT_FALSE(s.stalled(milliseconds(20'000)));  // lost: no stall to detect
+  EXPECT_EQ(s.deadline(), milliseconds(12'900));
+  EXPECT_FALSE(s.reopen_due(milliseconds(12'899)));
+  EXPECT_TRUE(s.reopen_due(milliseconds(12'900)));
+  s.lost(milliseconds(12'900));  // the reopen failed: next try one interval later
+  EXPECT_EQ(s.deadline(), milliseconds(14'900));
+  s.opened(milliseconds(14'900));
+  EXPECT_FALSE(s.stalled(milliseconds(15'399)));
+  EXPECT_TRUE(s.stalled(milliseconds(15'400)));
+}
+
+// The reopen follows the injected clock, not the monotonic one: a manual clock decides when the
+// missing device is tried again, however much real time passes.
+TEST(LinuxCamera, ReopenIsTimedByTheInjectedClock) {
+  const std::string dir = std::string(HAL_TEST_OUTPUT_DIR) + "/camera_reopen";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  CameraConfig cfg;
+  cfg.device = dir + "/video0";
+  cfg.reopen_interval = milliseconds(5000);
+  ManualClock clock(milliseconds(100'000));
+  auto cam = open_v4l2_camera(cfg, clock);
+  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory");
+  std::ofstream(cfg.device) << "not a camera";  // the device appears, as when it is plugged back in
+  clock.advance(milliseconds(4999));
+  cam->service();
+  EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory") << "reopened early";
+  clock.advance(milliseconds(1));
+  cam->service();
+  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_NE(cam->last_error().find("VIDIOC_QUERYCAP failed (not a V4L2 device?)"), std::string::npos)
+      << cam->last_error();
+}
+
 TEST(LinuxCamera, MissingDeviceIsLostNamedAndRetried) {
   CameraConfig cfg;
   cfg.device = "/dev/v4l/by-id/usb-no-such-camera-video-index0";
   cfg.reopen_interval = std::chrono::milliseconds(100);
-  auto cam = open_v4l2_camera(cfg);
+  MonotonicClock clock;
+  auto cam = open_v4l2_camera(cfg, clock);
   EXPECT_EQ(cam->state(), CameraState::Lost);
   EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory");
   RgbImage f;
@@ -63,7 +195,8 @@ TEST(LinuxCamera, MissingDeviceIsLostNamedAndRetried) {
 TEST(LinuxCamera, NonV4l2DeviceIsRejectedWithTheReason) {
   CameraConfig cfg;
   cfg.device = "/dev/null";
-  auto cam = open_v4l2_camera(cfg);
+  MonotonicClock clock;
+  auto cam = open_v4l2_camera(cfg, clock);
   EXPECT_EQ(cam->state(), CameraState::Lost);
   EXPECT_NE(cam->last_error().find("/dev/null: VIDIOC_QUERYCAP failed (not a V4L2 device?)"), std::string::npos)
       << cam->last_error();
@@ -164,7 +297,8 @@ TEST(Hardware, VividCapture) {
     cfg.width = 640;
     cfg.height = 480;
     cfg.format = f;
-    auto cam = open_v4l2_camera(cfg);
+    MonotonicClock clock;
+    auto cam = open_v4l2_camera(cfg, clock);
     ASSERT_EQ(cam->state(), CameraState::Streaming) << cam->last_error();
     RgbImage frame;
     ASSERT_TRUE(cam->capture(frame, std::chrono::seconds(2))) << cam->last_error();

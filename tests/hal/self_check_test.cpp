@@ -132,26 +132,41 @@ TEST(SelfCheck, MismatchedSizesAreAnErrorNotACrash) {
   EXPECT_NE(r.reason.find("expected the layout's 640x360"), std::string::npos) << r.reason;
 }
 
-TEST(MockCamera, CyclesImageFilesAndSimulatesUnplug) {
+TEST(MockCamera, CyclesImageFilesAtItsFrameRateAndSimulatesUnplug) {
   const std::string dir = HAL_TEST_OUTPUT_DIR;
   std::string err;
   RgbImage a(8, 4), b(8, 4);
   b.at(1, 1)[0] = 200;
   ASSERT_TRUE(save_image(dir + "/mock_a.png", a, &err)) << err;
   ASSERT_TRUE(save_image(dir + "/mock_b.png", b, &err)) << err;
-  MockCamera cam({dir + "/mock_a.png", dir + "/mock_b.png"});
+  ManualClock clock(std::chrono::seconds(10));
+  MockCamera cam({dir + "/mock_a.png", dir + "/mock_b.png"}, clock);
   RgbImage f;
   ASSERT_TRUE(cam.capture(f, std::chrono::milliseconds(100)));
   EXPECT_EQ(f.at(1, 1)[0], 0);
+  // Like a webcam, the next frame comes one frame interval later, not on every call.
+  EXPECT_FALSE(cam.read_frame(f));
+  clock.advance(MockCamera::kFrameInterval - Nanos(1));
+  EXPECT_FALSE(cam.read_frame(f));
+  clock.advance(Nanos(1));
   ASSERT_TRUE(cam.read_frame(f));
   EXPECT_EQ(f.at(1, 1)[0], 200);
+  // Read late: the missed frames are gone and the next is an interval after this read.
+  clock.advance(5 * MockCamera::kFrameInterval);
+  EXPECT_TRUE(cam.read_frame(f));
+  EXPECT_FALSE(cam.read_frame(f));
   cam.unplug();
   EXPECT_EQ(cam.state(), CameraState::Lost);
+  EXPECT_NE(cam.last_error().find("No such device"), std::string::npos);
   EXPECT_FALSE(cam.read_frame(f));
+  cam.service();
+  EXPECT_EQ(cam.state(), CameraState::Lost);  // still unplugged
   cam.replug();
   cam.service();
   EXPECT_EQ(cam.state(), CameraState::Streaming);
-  EXPECT_THROW(MockCamera({dir + "/does-not-exist.png"}), std::runtime_error);
+  EXPECT_TRUE(cam.last_error().empty());
+  EXPECT_TRUE(cam.read_frame(f));
+  EXPECT_THROW(MockCamera({dir + "/does-not-exist.png"}, clock), std::runtime_error);
 }
 
 }  // namespace

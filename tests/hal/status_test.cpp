@@ -29,6 +29,17 @@ TEST(LedPatterns, BlinkAndHeartbeatToggleAtTheirPhases) {
   for (auto [ms, on] : beat) EXPECT_EQ(pattern_level(LedPattern::Heartbeat, milliseconds(ms)), on) << ms;
 }
 
+TEST(LedPatterns, PeriodIsOneFullCycle) {
+  EXPECT_EQ(pattern_period(LedPattern::BlinkSlow), milliseconds(1000));
+  EXPECT_EQ(pattern_period(LedPattern::BlinkFast), milliseconds(200));
+  EXPECT_EQ(pattern_period(LedPattern::Heartbeat), milliseconds(1200));
+  EXPECT_EQ(pattern_period(LedPattern::On), Nanos::max());
+  // A period later every pattern is back where it started.
+  for (auto p : {LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat})
+    for (int ms : {0, 90, 150, 300, 600})
+      EXPECT_EQ(pattern_level(p, milliseconds(ms)), pattern_level(p, milliseconds(ms) + pattern_period(p))) << ms;
+}
+
 TEST(LedPatterns, NamesRoundTrip) {
   for (auto p : {LedPattern::Off, LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat}) {
     LedPattern q = LedPattern::Off;

@@ -36,6 +36,13 @@ public:
   // Drains pending edges, advances the timing state to the clock's now and copies out up to
   // out.size() events, oldest first; the rest stay queued for the next call.
   virtual std::size_t read(std::span<ButtonEvent> out) = 0;
+  // Events lost because read() was not called for so long that the queue (256 events) filled.
+  // Repeats go first, then long presses, then presses of clicks already over; a Release that leaves
+  // its button up is never lost, so no button is left looking held. Non-zero: the app's loop stalled.
+  virtual std::size_t dropped() const = 0;
+  // The last failure of a line while running (e.g. its chip was removed), naming the button and
+  // the error; empty when none. The failed button is released and stops reporting.
+  virtual const std::string& last_error() const = 0;
 };
 
 }  // namespace hal

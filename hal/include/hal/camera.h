@@ -26,19 +26,24 @@ struct CameraConfig {
   PixelFormat format = PixelFormat::Auto;  // Auto: MJPEG, then YUYV
   int buffers = 4;
   std::chrono::milliseconds reopen_interval{2000};
+  // No usable frame for this long while streaming (a wedged camera, or one gone without an error):
+  // torn down and reopened like an unplugged one. Webcams deliver at 5 fps or more even in the dark.
+  std::chrono::milliseconds frame_timeout{2000};
 };
 
 class Camera {
 public:
   virtual ~Camera() = default;
-  // Readable when a frame is ready or a reopen is due; then call read_frame() or service().
+  // Readable when a frame is ready or a deadline (reopen, no-frame check) is due; then call
+  // read_frame() and service().
   virtual int fd() const = 0;
   virtual CameraState state() const = 0;
   // The last error, naming the device and what failed; empty when none.
   virtual const std::string& last_error() const = 0;
   // Non-blocking: true and `out` filled (buffer reused) when a frame was ready.
   virtual bool read_frame(RgbImage& out) = 0;
-  // Retries a lost device when its reopen timer is due.
+  // Gives up on a stream that delivered no frame for frame_timeout, and retries a lost device when
+  // its reopen timer is due.
   virtual void service() = 0;
   // Waits up to `timeout` for one frame (for checks and hal-test, not the frame loop).
   bool capture(RgbImage& out, std::chrono::milliseconds timeout);

@@ -30,7 +30,8 @@ std::unique_ptr<Buttons> open_gpio_buttons(const std::vector<ButtonConfig>& butt
                                            const Clock& clock, std::vector<std::string>& problems);
 std::unique_ptr<LedSink> open_gpio_leds(const std::vector<LedConfig>& leds, const std::string& consumer,
                                         std::vector<std::string>& problems);
-// Never null: a device that cannot be opened yields a camera in state Lost that retries.
-std::unique_ptr<Camera> open_v4l2_camera(const CameraConfig& config);
+// Never null: a device that cannot be opened yields a camera in state Lost that retries. `clock` times
+// the reopen and no-frame deadlines.
+std::unique_ptr<Camera> open_v4l2_camera(const CameraConfig& config, const Clock& clock);
 
 }  // namespace hal

@@ -41,7 +41,10 @@ public:
   std::size_t count() const override;
   std::string_view name(std::size_t button) const override;
   std::size_t read(std::span<ButtonEvent> out) override;
-  // Raw level change now, e.g. from a key in the desktop window.
+  std::size_t dropped() const override;
+  const std::string& last_error() const override;  // always empty: a script cannot fail
+  // Raw level change now: what keys of a desktop window would send (no window platform exists yet;
+  // tests use it).
   void inject(std::size_t button, bool pressed);
 
 private:
@@ -101,12 +104,17 @@ void synthesize_capture(const RgbImage& displayed, const CameraModel& model, std
 // `scene` picks the layout and colours, `t` (seconds) moves the objects as playback would.
 RgbImage make_test_scene(int width, int height, int scene, double t);
 
+// Delivers a frame every `frame_interval` of `clock`, as a webcam does: fd() (a timerfd) is readable
+// exactly when read_frame() has a frame (or, after unplug()/replug(), when service() has something
+// to do), so a poll loop neither spins nor misses frames.
 class MockCamera final : public Camera {
 public:
-  // Frames cycle through image files (loaded once, at construction).
-  explicit MockCamera(const std::vector<std::string>& image_files);
-  // Frames are synthesised from whatever show() was last given.
-  explicit MockCamera(CameraModel model);
+  static constexpr Nanos kFrameInterval = std::chrono::nanoseconds(1'000'000'000 / 30);  // 30 fps
+
+  // Frames cycle through image files (loaded once, at construction); the first is due at once.
+  MockCamera(const std::vector<std::string>& image_files, const Clock& clock, Nanos frame_interval = kFrameInterval);
+  // Frames are synthesised from whatever show() was last given; the first is due when show() is called.
+  MockCamera(CameraModel model, const Clock& clock, Nanos frame_interval = kFrameInterval);
 
   void show(const RgbImage& displayed);  // what the display presents now
   void unplug();                         // acts like ENODEV: state Lost until replug()
@@ -119,6 +127,9 @@ public:
   void service() override;
 
 private:
+  bool has_source() const { return !synthetic_ || !displayed_.empty(); }
+  void arm(Nanos at);
+
   std::vector<RgbImage> files_;
   std::size_t next_file_ = 0;
   CameraModel model_;
@@ -128,7 +139,10 @@ private:
   CameraState state_ = CameraState::Streaming;
   bool plugged_ = true;
   std::string error_;
-  UniqueFd event_;
+  const Clock& clock_;
+  Nanos interval_;
+  Nanos next_frame_{0};
+  UniqueFd timer_;
 };
 
 }  // namespace hal

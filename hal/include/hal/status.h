@@ -18,12 +18,17 @@ bool parse_led_pattern(std::string_view text, LedPattern& out);
 // (Nanos::max() for the steady patterns). Pure, so timing is tested without a clock.
 bool pattern_level(LedPattern p, Nanos elapsed);
 Nanos pattern_next_change(LedPattern p, Nanos elapsed);
+// How long one cycle of the pattern takes (Nanos::max() for the steady ones): how long a pattern
+// must be shown for someone to see all of it.
+Nanos pattern_period(LedPattern p);
 
 // Where LED levels go: GPIO lines on a board, a recording in tests.
 class LedSink {
 public:
   virtual ~LedSink() = default;
   virtual void set(std::size_t led, bool on) = 0;
+  // The last failure to drive an LED while running, naming it; empty when none.
+  virtual const std::string& last_error() const;
 };
 
 struct CheckSummary {
@@ -59,6 +64,8 @@ public:
   const std::string& led_name(std::size_t led) const { return names_[led]; }
   void set_pattern(std::size_t led, LedPattern p);
   LedPattern pattern(std::size_t led) const { return leds_[led].pattern; }
+  // The sink's last failure to drive an LED (e.g. its chip was removed); empty when none.
+  const std::string& led_error() const { return sink_->last_error(); }
 
   // Writes the report as JSON to a temporary file next to the status file, fsyncs it and renames it
   // over the old one, so readers see the old or the new file, never a torn one.

@@ -24,7 +24,7 @@ namespace gl {
   X(PFNGLBUFFERSUBDATAPROC, BufferSubData) X(PFNGLBINDBUFFERBASEPROC, BindBufferBase) \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                        \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                  \
-  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray) X(PFNGLDRAWARRAYSPROC, DrawArrays)     \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                        \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                        \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                                \
   X(PFNGLGENTEXTURESPROC, GenTextures) X(PFNGLDELETETEXTURESPROC, DeleteTextures)     \

@@ -106,7 +106,7 @@ bool Renderer::init(const gl::Caps& caps, std::string& error) {
   if (!blur_gaussian_) return false;
   blur_bilateral_ = gl::build_program({{GL_COMPUTE_SHADER, "blur.comp"}}, "#define BILATERAL 1\n", error);
   if (!blur_bilateral_) return false;
-  composite_ = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}}, "", error);
+  composite_ = gl::build_program({{GL_COMPUTE_SHADER, "composite.comp"}}, "", error);
   if (!composite_) return false;
   assign_units(depth_chain_, {"u_linear_depth"});
   assign_units(upsample_, {"u_ao", "u_linear_depth"});
@@ -114,7 +114,6 @@ bool Renderer::init(const gl::Caps& caps, std::string& error) {
   assign_units(blur_bilateral_, {"u_source"});
   assign_units(composite_, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"});
   gl::api.UseProgram(0);
-  fullscreen_vao_ = gl::make_vertex_array();  // desktop GL core draws nothing without a bound array
   white_ = gl::make_texture();
   gl::api.BindTexture(GL_TEXTURE_2D, white_.id());
   gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_SRGB8_ALPHA8, 1, 1);
@@ -236,15 +235,6 @@ bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     error = "the G-buffer framebuffer is incomplete (status 0x" + std::to_string(status) + ")";
-    return false;
-  }
-  composite_fbo_ = gl::make_framebuffer();
-  gl::api.BindFramebuffer(GL_FRAMEBUFFER, composite_fbo_.id());
-  gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, output_.id(), 0);
-  const GLenum composite_status = gl::api.CheckFramebufferStatus(GL_FRAMEBUFFER);
-  gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (composite_status != GL_FRAMEBUFFER_COMPLETE) {
-    error = "the composite framebuffer is incomplete (status 0x" + std::to_string(composite_status) + ")";
     return false;
   }
   read_fbo_ = gl::make_framebuffer();
@@ -456,11 +446,9 @@ void Renderer::render(const scene::Camera& camera) {
   bind_texture(1, normal_);
   bind_texture(2, linear_depth_);
   bind_texture(3, *ao_result);
-  gl::api.BindFramebuffer(GL_FRAMEBUFFER, composite_fbo_.id());
-  gl::api.BindVertexArray(fullscreen_vao_.id());
-  gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
-  gl::api.BindVertexArray(0);
-  gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::api.BindImageTexture(0, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  gl::api.DispatchCompute(groups(w, SSAO_GROUP_SIZE), groups(h, SSAO_GROUP_SIZE), 1);
+  gl::api.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   check(kComposite);
   timer_.mark(kComposite);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The paper's six-pass deferred frame on GLES 3.1: depth prepass, G-buffer, SSAO (compute),
-// horizontal and vertical blur (compute), composite (a full-screen fragment pass). One instance per context.
+// horizontal and vertical blur (compute), composite (compute). One instance per context.
 #include "gl/caps.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
@@ -128,8 +128,7 @@ class Renderer {
 
   gl::Texture white_;  // stands in for a missing base colour texture when untextured_variant is off
   gl::Texture albedo_, normal_, linear_depth_, depth_, ao_raw_, ao_temp_, ao_blurred_, ao_full_, output_;
-  gl::Framebuffer gbuffer_fbo_, composite_fbo_, read_fbo_;
-  gl::VertexArray fullscreen_vao_;
+  gl::Framebuffer gbuffer_fbo_, read_fbo_;
   gl::Buffer ssao_ubo_, blur_ubo_[2], upsample_ubo_, composite_ubo_;
   shared_layout::SsaoParams ssao_params_{};
   shared_layout::BlurParams blur_params_[2]{};

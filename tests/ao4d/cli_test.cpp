@@ -134,13 +134,7 @@ void expect_outputs(const std::string& prefix, const Expected& expected) {
     const Volume& v = expected.volume;
 
     const test::VtiFile vti = test::read_vti(prefix + ".vti");
-    EXPECT_EQ(vti.extent, (std::vector<double>{0, 7, 0, 7, 0, 7}));
-    ASSERT_EQ(vti.origin.size(), 3u);
-    ASSERT_EQ(vti.spacing.size(), 3u);
-    for (std::size_t a = 0; a < 3; ++a) {
-        EXPECT_NEAR(vti.origin[a], v.origin[a], 1e-7);
-        EXPECT_NEAR(vti.spacing[a], v.spacing[a], 1e-7);
-    }
+    test::expect_vti_grid(vti, 7, v);
     ASSERT_EQ(vti.arrays.count("ao"), 1u);
     ASSERT_EQ(vti.arrays.count("depth"), 1u);
     expect_same(vti.arrays.at("ao"), v.ao, "vti ao");

@@ -61,13 +61,7 @@ TEST(Volume, OrthographicDepthOfAHypersphereAndItsVtiReadBack) {
     const auto file = std::filesystem::path(AO4D_TEST_OUTPUT_DIR) / "hypersphere.vti";
     write_vti(file, volume);
     const VtiFile vti = read_vti(file);
-    EXPECT_EQ(vti.extent, (std::vector<double>{0, 8, 0, 8, 0, 8}));
-    ASSERT_EQ(vti.origin.size(), 3u);
-    ASSERT_EQ(vti.spacing.size(), 3u);
-    for (std::size_t a = 0; a < 3; ++a) {
-        EXPECT_NEAR(vti.origin[a], volume.origin[a], 1e-7);
-        EXPECT_NEAR(vti.spacing[a], volume.spacing[a], 1e-7);
-    }
+    expect_vti_grid(vti, 8, volume);
     ASSERT_EQ(vti.arrays.size(), 2u);
     expect_same(vti.arrays.at("ao"), volume.ao);
     expect_same(vti.arrays.at("depth"), volume.depth);

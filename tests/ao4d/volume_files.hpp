@@ -48,6 +48,18 @@ struct VtiFile {
     std::map<std::string, std::vector<float>> arrays;
 };
 
+// The grid a .vti file declares matches the volume written: extent 0..last on each axis, origin, spacing.
+template <class Volume>
+void expect_vti_grid(const VtiFile& vti, double last, const Volume& volume) {
+    EXPECT_EQ(vti.extent, (std::vector<double>{0, last, 0, last, 0, last}));
+    ASSERT_EQ(vti.origin.size(), 3u);
+    ASSERT_EQ(vti.spacing.size(), 3u);
+    for (std::size_t a = 0; a < 3; ++a) {
+        EXPECT_NEAR(vti.origin[a], volume.origin[a], 1e-7);
+        EXPECT_NEAR(vti.spacing[a], volume.spacing[a], 1e-7);
+    }
+}
+
 // Reads what ParaView needs: extent, origin, spacing and the raw appended Float32 arrays.
 inline VtiFile read_vti(const std::filesystem::path& file) {
     const std::string data = slurp(file);

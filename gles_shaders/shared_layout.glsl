@@ -17,11 +17,11 @@
 #define BINDING_COMPOSITE_PARAMS 2
 #define BINDING_UPSAMPLE_PARAMS 3
 
-// Debug views of the composite pass.
-#define VIEW_COLOR 0
-#define VIEW_AO 1
-#define VIEW_NORMAL 2
-#define VIEW_DEPTH 3
+// What the present pass shows: the shaded image or one of the debug outputs.
+#define OUTPUT_COLOR 0
+#define OUTPUT_AO 1
+#define OUTPUT_NORMAL 2
+#define OUTPUT_DEPTH 3
 
 // Estimators (ESTIMATOR define of ssao.comp).
 #define ESTIMATOR_SPHERE 0
@@ -60,8 +60,11 @@ struct UpsampleParams {
 struct CompositeParams {
   vec4 light_direction;   // view space, normalised; w: ambient share
   vec4 background;        // linear RGB of empty pixels
-  vec4 depth_range;       // x: near, y: far (for the depth view)
-  ivec4 config;           // x: view (VIEW_*), y: apply AO (0/1), z: width, w: height
+  vec4 depth_range;       // x: near, y: far (for the depth view); z: 1 / far; w: fade (brightness multiplier)
+  ivec4 config;           // x: output (OUTPUT_*), y: apply AO (0/1), z: width, w: height
+  ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
+                          // w: unused
+  ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
 };
 
 #endif

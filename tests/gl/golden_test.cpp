@@ -17,7 +17,7 @@ constexpr double kMaxFailingShare = 0.005;
 
 struct Golden {
   const char* name;
-  render::View view;
+  render::Output view;
 };
 
 class GoldenImage : public ::testing::TestWithParam<std::string> {};
@@ -40,11 +40,11 @@ void write_png(const std::string& path, int width, int height, const std::vector
 }
 
 TEST_P(GoldenImage, DemoMatchesTheGoldenPictures) {
-  for (const Golden golden : {Golden{"demo_color", render::View::color}, Golden{"demo_ao", render::View::ao}}) {
+  for (const Golden golden : {Golden{"demo_color", render::Output::color}, Golden{"demo_ao", render::Output::ao}}) {
     render::FrameSettings settings;
     settings.width = 128;
     settings.height = 96;
-    settings.view = golden.view;
+    settings.output = golden.view;
     settings.check_errors = true;
     test::Harness h;
     ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));

@@ -2,6 +2,7 @@
 // A context, a renderer and a framed scene, for GL tests on either platform.
 #include "scene/load.h"
 #include "gl/caps.h"
+#include "gl/gl_api.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
 
@@ -23,9 +24,7 @@ struct Harness {
   ::testing::AssertionResult start(const std::string& platform_name, const std::string& scene_spec,
                                    const render::FrameSettings& settings, const scene::Framing& framing = {}) {
     std::string error;
-    platform = platform::create({platform_name, true}, error);
-    if (!platform) return ::testing::AssertionFailure() << error;
-    caps = gl::query_caps();
+    if (!open(platform_name, settings, error)) return ::testing::AssertionFailure() << error;
     std::ostringstream log;
     if (!scene::load(scene_spec, scene, error, log)) return ::testing::AssertionFailure() << error;
     return render_first_frame(settings, framing);
@@ -35,16 +34,28 @@ struct Harness {
   ::testing::AssertionResult start(const std::string& platform_name, scene::Scene built,
                                    const render::FrameSettings& settings, const scene::Framing& framing = {}) {
     std::string error;
-    platform = platform::create({platform_name, true}, error);
-    if (!platform) return ::testing::AssertionFailure() << error;
-    caps = gl::query_caps();
+    if (!open(platform_name, settings, error)) return ::testing::AssertionFailure() << error;
     scene = std::move(built);
     return render_first_frame(settings, framing);
   }
 
+  // A context whose surface is the size of the frames.
+  bool open(const std::string& platform_name, const render::FrameSettings& settings, std::string& error) {
+    platform::Options options;
+    options.name = platform_name;
+    options.size = {settings.width, settings.height};
+    options.debug_context = true;
+    platform = gl::open_context(options, error);
+    if (!platform) return false;
+    caps = gl::query_caps();
+    return true;
+  }
+
+  render::PresentTarget target() const { return {platform->framebuffer(), 0, 0, platform->srgb_framebuffer()}; }
+
   ::testing::AssertionResult render_first_frame(const render::FrameSettings& settings, const scene::Framing& framing) {
     std::string error;
-    if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
+    if (!renderer.init(caps, target(), error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
       return ::testing::AssertionFailure() << error;
     camera = scene::frame(scene.bounds, framing, settings.width, settings.height);
     renderer.render(camera);

@@ -197,14 +197,14 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
   for (bool prepass : {true, false})
     for (bool ao : {true, false})
       for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral})
-        for (render::View view : {render::View::color, render::View::ao, render::View::normal, render::View::depth}) {
+        for (render::Output view : {render::Output::color, render::Output::ao, render::Output::normal, render::Output::depth}) {
           render::FrameSettings settings = small_settings();
           settings.width = 48;
           settings.height = 32;
           settings.prepass = prepass ? render::Prepass::on : render::Prepass::off;
           settings.ao = ao;
           settings.blur.mode = blur;
-          settings.view = view;
+          settings.output = view;
           Harness h;
           ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
           EXPECT_EQ(h.renderer.gl_error(), "") << "prepass " << prepass << " ao " << ao << " blur " << ssao::name(blur)
@@ -213,7 +213,7 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
           EXPECT_EQ(times.ms[render::kDepthPrepass] >= 0.0, prepass);
           EXPECT_EQ(times.ms[render::kSsao] >= 0.0, ao);
           EXPECT_EQ(times.ms[render::kBlurH] >= 0.0, ao && blur != ssao::Blur::off);
-          EXPECT_GE(times.ms[render::kComposite], 0.0);
+          EXPECT_GE(times.ms[render::kPresent], 0.0);
         }
 }
 

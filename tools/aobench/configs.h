@@ -1,6 +1,6 @@
 #pragma once
 // AO configurations for the benchmark: named ones, "key=value,..." specifications, and sweep grids.
-#include "render/renderer.h"
+#include "render/settings.h"
 
 #include <optional>
 #include <string>
@@ -15,14 +15,13 @@ struct Config {
 
 // `paper`: the paper's configuration (sphere estimator, 8 samples x 5 radii, Gaussian blur, full
 // resolution, none of the player's skips). `default`: what `player render` uses. Otherwise a
-// comma-separated list of key=value with keys estimator, samples, radii, pattern, blur, scale
-// (full|half), chain (on|off), skip (on|off: radii skipped per frame), background (skip|shade),
-// untextured (variant|fetch), reuse (on|off: AO kept while nothing moves), prepass (on|off|auto),
+// comma-separated list of key=value in the settings codec's names (render/settings.h: the long
+// options of `player render`, e.g. estimator=hemisphere,samples=16,resolution=full,reuse-ao=on),
 // applied to the default. Returns nullopt and says why.
 std::optional<Config> parse_config(const std::string& text, std::string& error);
 
-// The specification that parse_config() reads back to the same settings (the keys background,
-// untextured, reuse and prepass appear only where they differ from the default).
+// The specification that parse_config() reads back to the same settings: the AO keys always, the
+// others only where they differ from the default.
 std::string describe(const render::FrameSettings& settings);
 
 // quick: every estimator x samples {4, 8, 16, 32} x radii {1, 3, 5} x blur x scale, Poisson pattern,

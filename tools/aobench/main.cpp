@@ -5,10 +5,12 @@
 #include "aoref/metrics.h"
 #include "aoref/ray_scene.h"
 #include "aoref/reference.h"
-#include "app/render_command.h"
 #include "chart.h"
 #include "configs.h"
 #include "gl/caps.h"
+#include "gl/gl_api.h"
+#include "render/renderer.h"
+#include "render/settings.h"
 #include "platform/platform.h"
 #include "scene/load.h"
 
@@ -25,6 +27,10 @@
 #include <unistd.h>
 
 namespace {
+
+// The settings columns of the CSV, in the codec's names.
+constexpr const char* kCsvSettings[] = {"estimator", "samples", "radii", "pattern", "blur", "resolution", "depth-chain",
+                                        "skip-radii", "skip-background", "untextured-variant", "reuse-ao", "prepass"};
 
 namespace fs = std::filesystem;
 
@@ -150,7 +156,10 @@ int main(int argc, char** argv) {
     config.settings.height = height;
   }
 
-  auto platform = platform::create({options.platform, false}, error);
+  platform::Options platform_options;
+  platform_options.name = options.platform;
+  platform_options.size = {width, height};
+  auto platform = gl::open_context(platform_options, error);
   if (!platform) {
     std::cerr << "error: " << error << "\n";
     return 1;
@@ -166,7 +175,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << options.csv << ": cannot write\n";
     return 1;
   }
-  csv << "scene,view,config,estimator,samples,radii,pattern,blur,scale,chain,skip,background,untextured,reuse,prepass,"
+  csv << "scene,view,config";
+  for (const char* key : kCsvSettings) csv << ',' << key;
+  csv << ","
          "time_ms,raster_ms,frame_ms,reference,mae,rmse,ssim,edge_mae,mae_near_field,rmse_near_field,ssim_near_field\n";
   std::vector<Row> rows;
 
@@ -183,7 +194,8 @@ int main(int argc, char** argv) {
     }
     render::Renderer renderer;
     render::FrameSettings base = configs.front().settings;
-    if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(base, error)) {
+    const render::PresentTarget target{platform->framebuffer(), 0, 0, platform->srgb_framebuffer()};
+    if (!renderer.init(caps, target, error) || !renderer.upload(scene, error) || !renderer.configure(base, error)) {
       std::cerr << "error: " << scene_spec << ": " << error << "\n";
       return 1;
     }
@@ -194,7 +206,7 @@ int main(int argc, char** argv) {
       framing.distance = options.distance;
       const scene::Camera camera = scene::frame(scene.bounds, framing, width, height);
       renderer.render(camera);
-      const app::Surface surface = app::read_surface(renderer, camera);
+      const render::WorldSurface surface = render::read_world_surface(renderer.targets(), render::view_of(camera));
       aoref::View view;
       view.eye = camera.eye;
       for (int k = 0; k < SSAO_MAX_RADII; ++k) view.radii.push_back(renderer.base_radius() * std::ldexp(1.0, -k));
@@ -231,7 +243,8 @@ int main(int argc, char** argv) {
           renderer.render(camera);
           const render::PassTimes pass = renderer.collect_times();
           double ao_ms = 0.0, frame_ms = 0.0;
-          for (int p : {render::kDepthChain, render::kSsao, render::kBlurH, render::kBlurV, render::kUpsample})
+          // Upsampling happens inside the present pass, which also shades: it is in frame_ms, not here.
+          for (int p : {render::kDepthChain, render::kSsao, render::kBlurH, render::kBlurV})
             ao_ms += std::max(0.0, pass.ms[static_cast<size_t>(p)]);
           for (double ms : pass.ms) frame_ms += std::max(0.0, ms);
           if (frame > 0) {
@@ -253,13 +266,9 @@ int main(int argc, char** argv) {
                                  is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
         row.near_field = aoref::compare(ao_image(estimate, width, height, is_sphere), near_field.ao, depth);
         const auto& s = config.settings;
-        csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"," << ssao::name(s.ao_settings.estimator)
-            << ',' << s.ao_settings.samples << ',' << s.ao_settings.radii << ',' << ssao::name(s.ao_settings.pattern) << ','
-            << ssao::name(s.blur.mode) << ',' << (s.ao_settings.half_resolution ? "half" : "full") << ','
-            << (s.ao_settings.depth_chain ? "on" : "off") << ',' << (s.ao_settings.skip_radii ? "on" : "off") << ','
-            << (s.ao_settings.skip_background ? "skip" : "shade") << ',' << (s.untextured_variant ? "variant" : "fetch") << ','
-            << (s.reuse_static_ao ? "on" : "off") << ',' << (s.prepass == render::Prepass::automatic ? "auto" : render::name(s.prepass))
-            << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
+        csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"";
+        for (const char* key : kCsvSettings) csv << ',' << render::setting_value(config.settings, key);
+        csv            << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
             << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << "\n";
         rows.push_back(row);
         progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));

@@ -12,5 +12,5 @@ using mat4 = glm::mat4;
 static_assert(sizeof(SsaoParams) == 64 + 16 * 7 + 16 * SSAO_MAX_SAMPLES + 16 * SSAO_ROTATION_TILE * SSAO_ROTATION_TILE);
 static_assert(sizeof(UpsampleParams) == 32);
 static_assert(sizeof(BlurParams) == 16 * (BLUR_MAX_RADIUS + 1) + 32);
-static_assert(sizeof(CompositeParams) == 64);
+static_assert(sizeof(CompositeParams) == 96);
 }  // namespace shared_layout

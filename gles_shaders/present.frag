@@ -1,0 +1,69 @@
+// Present: upsamples the AO where it was computed at reduced resolution, shades (ambient + one
+// directional light in view space, times 1 - AO) or shows a debug output, and writes the result
+// into the platform's framebuffer. ENCODE_SRGB: the framebuffer stores what it is given, so the
+// shader encodes; otherwise the framebuffer is sRGB and encodes on write.
+#include "common.glsl"
+#include "shared_layout.glsl"
+#include "upsample.glsl"
+
+layout(std140, binding = BINDING_COMPOSITE_PARAMS) uniform CompositeBlock { CompositeParams composite; };
+uniform highp sampler2D u_albedo;
+uniform highp sampler2D u_normal;
+uniform highp sampler2D u_linear_depth;
+uniform highp sampler2D u_ao;  // r = AO (at the AO resolution), g = depth / far
+
+layout(location = 0) out vec4 fragment;
+
+vec3 linear_to_srgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+vec3 srgb_to_linear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
+// Shaded colour is linear; data outputs (normal, depth) are to arrive in the framebuffer as they are.
+vec4 shaded(vec3 linear) {
+#ifdef ENCODE_SRGB
+  return vec4(linear_to_srgb(linear), 1.0);
+#else
+  return vec4(clamp(linear, 0.0, 1.0), 1.0);
+#endif
+}
+vec4 data(vec3 value) {
+#ifdef ENCODE_SRGB
+  return vec4(value, 1.0);
+#else
+  return vec4(srgb_to_linear(clamp(value, 0.0, 1.0)), 1.0);
+#endif
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy) - composite.viewport.xy;
+  float fade = composite.depth_range.w;
+  float depth = texelFetch(u_linear_depth, pixel, 0).r;
+  if (depth <= 0.0) {
+    fragment = shaded(composite.background.rgb * fade);
+    return;
+  }
+  float ao = 0.0;
+  if (composite.config.y != 0) {
+    if (composite.ao_config.z == 0) ao = texelFetch(u_ao, pixel, 0).r;
+    else ao = upsampled_ao(u_ao, composite.ao_config.xy, pixel, depth * composite.depth_range.z);
+  }
+  vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+  int output_kind = composite.config.x;
+  if (output_kind == OUTPUT_AO) {
+    fragment = shaded(vec3(1.0 - ao) * fade);
+  } else if (output_kind == OUTPUT_NORMAL) {
+    fragment = data((normal * 0.5 + 0.5) * fade);
+  } else if (output_kind == OUTPUT_DEPTH) {
+    float t = (depth - composite.depth_range.x) / (composite.depth_range.y - composite.depth_range.x);
+    fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
+  } else {
+    vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
+    float ambient = composite.light_direction.w;
+    float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);
+    fragment = shaded(albedo * (ambient + (1.0 - ambient) * diffuse) * (1.0 - ao) * fade);
+  }
+}

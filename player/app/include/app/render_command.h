@@ -1,0 +1,26 @@
+#pragma once
+// The player's sub-commands over the render pipeline: `render` (one scene to an image, per-pass
+// times, optional dump for independent evaluation) and `info` (platform and GL capabilities).
+#include "render/renderer.h"
+#include "scene/camera.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace app {
+
+struct RenderOptions {
+  std::string scene;            // a .gltf/.glb path or builtin:NAME
+  std::string output;           // PNG path
+  std::string platform = "auto";
+  std::string dump_dir;         // empty: no dump
+  int frames = 1;               // frames rendered; times are the median over all but the first
+  scene::Framing framing;
+  render::FrameSettings frame;
+};
+
+int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
+int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);
+
+}  // namespace app

@@ -1,0 +1,236 @@
+#include "app/render_command.h"
+
+#include "gl/caps.h"
+#include "gl/gl_api.h"
+#include "image_io.h"
+#include "platform/platform.h"
+#include "scene/load.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+
+namespace app {
+namespace {
+
+nlohmann::json matrix_json(const glm::dmat4& m) {
+  nlohmann::json columns = nlohmann::json::array();
+  for (int c = 0; c < 4; ++c) columns.push_back({m[c][0], m[c][1], m[c][2], m[c][3]});
+  return columns;
+}
+
+// Writes the raw and blurred AO, world-space position and normal, linear depth and the camera, so
+// that the AO can be evaluated by anyone at exactly the surface points the SSAO pass saw.
+bool write_dump(const std::string& dir, const render::Renderer& renderer, const scene::Camera& camera,
+                const RenderOptions& options, const std::string& platform_description, std::string& error) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    error = dir + ": cannot create the dump folder (" + ec.message() + ")";
+    return false;
+  }
+  const int w = options.frame.width, h = options.frame.height;
+  const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
+  const render::WorldSurface surface = render::read_world_surface(renderer.targets(), render::view_of(camera));
+  // At half resolution the raw AO is smaller; each pixel takes the AO texel of its 2x2 block.
+  const std::vector<glm::vec2> ao_raw_low = renderer.read_ao_raw();
+  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_final();
+  const int shift = options.frame.ao_settings.half_resolution ? 1 : 0;
+  const int low_width = renderer.ssao_params().counts.z;
+  std::vector<float> raw(count), blurred(count);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      raw[i] = ao_raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(low_width) + static_cast<size_t>(x >> shift)].x;
+      blurred[i] = ao_blurred[i].x;
+    }
+  const glm::dmat4 view = camera.view();
+  const glm::dmat4 projection = camera.projection();
+  const std::vector<float>& depth = surface.depth;
+  const std::vector<float>& position = surface.position;
+  const std::vector<float>& normal = surface.normal;
+  const std::string base = dir + "/";
+  if (!write_exr(base + "ao_raw.exr", w, h, 1, raw, {"Y"}, error) ||
+      !write_exr(base + "ao_blurred.exr", w, h, 1, blurred, {"Y"}, error) ||
+      !write_exr(base + "position.exr", w, h, 4, position, {"R", "G", "B", "A"}, error) ||
+      !write_exr(base + "normal.exr", w, h, 4, normal, {"R", "G", "B", "A"}, error) ||
+      !write_exr(base + "depth.exr", w, h, 1, depth, {"Y"}, error))
+    return false;
+
+  const shared_layout::SsaoParams& params = renderer.ssao_params();
+  nlohmann::json radii = nlohmann::json::array();
+  const float all_radii[5] = {params.radii_0_3.x, params.radii_0_3.y, params.radii_0_3.z, params.radii_0_3.w,
+                              params.radius_4_bias.x};
+  for (int k = 0; k < params.counts.y; ++k) radii.push_back(all_radii[k]);
+  nlohmann::json kernel = nlohmann::json::array();
+  for (int i = 0; i < params.counts.x; ++i) kernel.push_back({params.kernel[i].x, params.kernel[i].y, params.kernel[i].z});
+  const render::FrameSettings& frame = options.frame;
+  nlohmann::json doc = {
+      {"scene", options.scene},
+      {"platform", platform_description},
+      {"width", w},
+      {"height", h},
+      {"image_rows", "EXR rows are top to bottom; pixel (x, y) has its centre at NDC ((x+0.5)/w*2-1, 1-(y+0.5)/h*2)"},
+      {"camera",
+       {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
+        {"target", {camera.target.x, camera.target.y, camera.target.z}},
+        {"up", {camera.up.x, camera.up.y, camera.up.z}},
+        {"fov_y_deg", glm::degrees(camera.fov_y)},
+        {"near", camera.near},
+        {"far", camera.far},
+        {"view", matrix_json(view)},
+        {"projection", matrix_json(projection)},
+        {"matrix_layout", "column-major: view[c] is column c"}}},
+      {"ao",
+       {{"enabled", frame.ao},
+        {"estimator", std::string(ssao::name(frame.ao_settings.estimator))},
+        {"resolution", frame.ao_settings.half_resolution ? "half" : "full"},
+        {"depth_chain", frame.ao_settings.depth_chain},
+        {"skip_radii", frame.ao_settings.skip_radii},
+        {"samples", params.counts.x},
+        {"radii", radii},
+        {"bias_fraction", params.radius_4_bias.y},
+        {"pattern", std::string(ssao::name(frame.ao_settings.pattern))},
+        {"kernel_unit_ball", kernel},
+        {"blur", std::string(ssao::name(frame.blur.mode))},
+        {"blur_radius", frame.blur.radius},
+        {"blur_sigma", frame.blur.sigma}}},
+      {"files",
+       {{"ao_raw.exr", "AO before blur, [0,1], 0 on background"},
+        {"ao_blurred.exr", "AO after blur (equal to ao_raw when blur is off)"},
+        {"position.exr", "world-space position of the visible surface; A = 1 on objects, 0 on background"},
+        {"normal.exr", "world-space unit normal; A as above"},
+        {"depth.exr", "linear view depth (distance along the view axis), 0 on background"}}}};
+  std::ofstream json(base + "camera.json");
+  json << std::setw(2) << doc << "\n";
+  if (!json) {
+    error = base + "camera.json: cannot write";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
+  const auto load_start = std::chrono::steady_clock::now();
+  scene::Scene scene;
+  std::string error;
+  if (!scene::load(options.scene, scene, error, err)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+
+  platform::Options platform_options;
+  platform_options.name = options.platform;
+  platform_options.size = {options.frame.width, options.frame.height};
+  auto platform = gl::open_context(platform_options, error);
+  if (!platform) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const gl::Caps caps = gl::query_caps();
+  gl::install_debug_log(caps, false);
+  render::Renderer renderer;
+  const render::PresentTarget target{platform->framebuffer(), 0, 0, platform->srgb_framebuffer()};
+  if (!renderer.init(caps, target, error) || !renderer.upload(scene, error) || !renderer.configure(options.frame, error)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const scene::Camera camera = scene::frame(scene.bounds, options.framing, options.frame.width, options.frame.height);
+
+  const int frames = std::max(1, options.frames);
+  std::vector<render::PassTimes> times;
+  int reused = 0;
+  for (int frame = 0; frame < frames; ++frame) {
+    renderer.render(camera);
+    times.push_back(renderer.collect_times());
+    reused += renderer.reused_ao() ? 1 : 0;
+  }
+  if (!renderer.gl_error().empty()) {
+    err << "error: " << renderer.gl_error() << "\n";
+    return 1;
+  }
+  if (!options.output.empty()) {
+    if (!write_png(options.output, options.frame.width, options.frame.height, renderer.read_color(), error)) {
+      err << "error: " << error << "\n";
+      return 1;
+    }
+  }
+  if (!options.dump_dir.empty() &&
+      !write_dump(options.dump_dir, renderer, camera, options, std::string(platform->name()) + ": " + caps.renderer, error)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+
+  // The first frame pays for shader compilation and first-touch allocation; with more than one
+  // frame it is left out of the median.
+  const size_t first = times.size() > 1 ? 1 : 0;
+  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.frame.width << "x"
+      << options.frame.height << ", " << platform->name() << " (" << caps.renderer << "), loaded in " << std::fixed
+      << std::setprecision(1) << load_ms << " ms\n";
+  out << (times.front().gpu_timed ? "GPU time per pass" : "time per pass (CPU clock around glFinish; no timer queries)")
+      << ", median of " << times.size() - first << " frame(s):\n";
+  double total = 0.0;
+  for (int pass = 0; pass < render::kPassCount; ++pass) {
+    std::vector<double> samples;
+    for (size_t f = first; f < times.size(); ++f) samples.push_back(times[f].ms[static_cast<size_t>(pass)]);
+    std::sort(samples.begin(), samples.end());
+    const double median = samples[samples.size() / 2];
+    if (median < 0.0) {
+      out << "  " << std::left << std::setw(16) << render::pass_name(pass) << "   skipped\n";
+      continue;
+    }
+    total += median;
+    out << "  " << std::left << std::setw(16) << render::pass_name(pass) << std::right << std::setw(9)
+        << std::setprecision(3) << median << " ms\n";
+  }
+  out << "  " << std::left << std::setw(16) << "total" << std::right << std::setw(9) << total << " ms\n";
+  if (options.frame.prepass == render::Prepass::automatic) {
+    if (renderer.raster_ms_without_prepass() >= 0.0)
+      out << "depth prepass: auto kept it " << (renderer.prepass_in_use() ? "on" : "off") << " (prepass + g-buffer "
+          << renderer.raster_ms_with_prepass() << " ms, g-buffer alone " << renderer.raster_ms_without_prepass() << " ms)\n";
+    else
+      out << "depth prepass: auto needs two frames to choose (--frames 3 or more)\n";
+  }
+  if (reused > 0)
+    out << "AO reused on " << reused << " of " << frames << " frames (camera still; --reuse-ao off to time every frame)\n";
+  if (!options.output.empty()) out << "wrote " << options.output << "\n";
+  if (!options.dump_dir.empty()) out << "dumped AO, position, normal, depth and camera.json to " << options.dump_dir << "\n";
+  return 0;
+}
+
+int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err) {
+  std::string error;
+  platform::Options platform_options;
+  platform_options.name = platform_name;
+  platform_options.size = {64, 64};
+  auto platform = gl::open_context(platform_options, error);
+  if (!platform) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const gl::Caps caps = gl::query_caps();
+  out << "platform:        " << platform->name() << " (" << platform->description() << ")\n";
+  out << "GL renderer:     " << caps.renderer << "\n";
+  out << "GL version:      " << caps.version << "\n";
+  out << "GLSL version:    " << caps.shading_language << "\n";
+  out << "compute:         " << caps.max_compute_work_group_invocations << " invocations per group, textures up to "
+      << caps.max_texture_size << "\n";
+  out << "extensions used:\n";
+  for (const std::string& extension : platform->extensions_used()) out << "  " << extension << "  yes\n";
+  for (const auto& [extension, present] : caps.extensions_used())
+    out << "  " << extension << "  " << (present ? "yes" : "no") << "\n";
+  out << "per-pass timing: " << (caps.timer_query ? "GPU timer queries" : "CPU clock around glFinish") << "\n";
+  return 0;
+}
+
+}  // namespace app

@@ -1,0 +1,51 @@
+#include "backends.h"
+
+namespace platform {
+namespace {
+
+constexpr Entry kRegistry[] = {
+    {"egl", "headless EGL: EGL_EXT_platform_device for GPUs, else Mesa's surfaceless platform", true, create_egl},
+    {"osmesa", "Mesa's OSMesa, desktop GL 4.5 core running the same ES 3.1 shaders", true, create_osmesa},
+};
+
+}  // namespace
+
+std::span<const Entry> registry() { return kRegistry; }
+
+std::vector<std::string> names() {
+  std::vector<std::string> all{"auto"};
+  for (const Entry& entry : registry()) all.emplace_back(entry.name);
+  return all;
+}
+
+std::string names_text() {
+  const std::vector<std::string> all = names();
+  std::string text;
+  for (size_t i = 0; i < all.size(); ++i) text += (i == 0 ? "" : i + 1 == all.size() ? " or " : ", ") + all[i];
+  return text;
+}
+
+std::unique_ptr<Platform> create(const Options& options, std::string& error) {
+  if (options.size.width < 1 || options.size.height < 1) {
+    error = "--size: " + std::to_string(options.size.width) + "x" + std::to_string(options.size.height) +
+            " is not a surface size (expected positive width and height)";
+    return nullptr;
+  }
+  if (options.name == "auto") {
+    std::string attempts;
+    for (const Entry& entry : registry()) {
+      if (!entry.tried_by_auto) continue;
+      std::string why;
+      if (auto platform = entry.create(options, why)) return platform;
+      attempts += (attempts.empty() ? "" : "; ") + why;
+    }
+    error = attempts;
+    return nullptr;
+  }
+  for (const Entry& entry : registry())
+    if (entry.name == options.name) return entry.create(options, error);
+  error = "--platform: unknown platform '" + std::string(options.name) + "' (expected " + names_text() + ")";
+  return nullptr;
+}
+
+}  // namespace platform

@@ -1,0 +1,48 @@
+#pragma once
+// The frame, one function per pass. Each records into the view's targets; none allocates, throws
+// or waits on the GPU. A GL error is recorded by the Frame, not raised.
+#include "gl/frame_timer.h"
+#include "render/programs.h"
+#include "render/scene_gpu.h"
+#include "render/view.h"
+#include "render/view_targets.h"
+
+#include <string>
+#include <string_view>
+
+namespace render {
+
+enum Pass { kDepthPrepass, kGBuffer, kDepthChain, kSsao, kBlurH, kBlurV, kPresent, kPassCount };
+std::string_view pass_name(int pass);
+
+// Where the present pass writes: a framebuffer (0: the platform's), the view's rectangle in it, and
+// whether the framebuffer encodes sRGB on write.
+struct PresentTarget {
+  unsigned framebuffer = 0;
+  int x = 0, y = 0;
+  bool srgb = false;
+};
+
+// What every pass of one frame of one view shares.
+struct Frame {
+  Programs& programs;
+  const SceneGpu& scene;
+  ViewTargets& targets;
+  const View& view;
+  gl::FrameTimer* timer = nullptr;  // null: untimed
+  std::string* gl_error = nullptr;  // the first GL error of the frame, when settings.check_errors
+  void finish_pass(int pass) const;  // error check and timer mark
+};
+
+void depth_prepass(const Frame& frame);
+void gbuffer_pass(const Frame& frame, bool after_prepass);
+// The AO passes (depth chain, SSAO, blur). Returns false when the history was kept instead.
+bool ao_passes(const Frame& frame);
+// Upsampling (when AO is at half resolution), shading and sRGB encoding, into `target`. `fade`
+// multiplies the image (transitions between playlist items).
+void present_pass(const Frame& frame, const PresentTarget& target, float fade);
+
+// All of them in order for one view, choosing the prepass as the settings say.
+void render_view(const Frame& frame, const PresentTarget& target, float fade);
+
+}  // namespace render

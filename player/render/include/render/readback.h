@@ -1,0 +1,36 @@
+#pragma once
+// Read-backs for output, dumps and tests: they wait for the GPU, so never in the frame loop.
+// Rows come bottom-up (GL order) except where a function says otherwise.
+#include "render/programs.h"
+#include "render/passes.h"
+#include "render/view.h"
+#include "render/view_targets.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace render {
+
+// The presented image, RGBA8, row 0 at the top.
+std::vector<uint8_t> read_presented(const PresentTarget& target, int width, int height);
+std::vector<float> read_linear_depth(const ViewTargets& targets);
+std::vector<glm::vec3> read_view_normals(const ViewTargets& targets);
+// r: AO, g: depth / far, at the AO resolution.
+std::vector<glm::vec2> read_ao(const gl::Texture& texture, int width, int height);
+// The AO the present pass shaded with, at full resolution: upsampled exactly as the present pass
+// does it (the same GLSL function) when AO runs at half resolution.
+std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets& targets);
+// What that upsampling reads: full and AO sizes, and the 1/far of the last frame.
+shared_layout::UpsampleParams upsample_params(const ViewTargets& targets);
+
+// The visible surface in world space, rows bottom-up: positions and normals with alpha 1 on objects
+// and 0 on background, and linear depth. Rebuilt from the G-buffer exactly as ssao.comp rebuilds it,
+// in double, so references are computed at the points SSAO saw.
+struct WorldSurface {
+  int width = 0, height = 0;
+  std::vector<float> position, normal;  // 4 channels each
+  std::vector<float> depth;             // 1 channel
+};
+WorldSurface read_world_surface(const ViewTargets& targets, const View& view);
+
+}  // namespace render

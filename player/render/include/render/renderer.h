@@ -1,0 +1,89 @@
+#pragma once
+// One view of one scene, for the commands and tests that render a single image: the programs, the
+// scene's GPU data, one view's targets and a frame timer, put together. Each part is its own
+// class (programs.h, scene_gpu.h, view_targets.h, passes.h); light field output uses them directly
+// with many views.
+#include "gl/caps.h"
+#include "gl/frame_timer.h"
+#include "render/passes.h"
+#include "render/programs.h"
+#include "render/readback.h"
+#include "render/scene_gpu.h"
+#include "render/settings.h"
+#include "render/view.h"
+#include "render/view_targets.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace render {
+
+struct PassTimes {
+  std::array<double, kPassCount> ms{};  // negative: the pass did not run
+  bool gpu_timed = false;               // false: CPU time around glFinish
+};
+
+class Renderer {
+ public:
+  Renderer() = default;
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Compiles the programs; `target` is where frames are presented. `serialise_timing`: without
+  // timer queries, time passes around glFinish (render command, benchmarks; never the player loop).
+  bool init(const gl::Caps& caps, const PresentTarget& target, std::string& error, bool serialise_timing = true);
+  bool upload(const scene::Scene& scene, std::string& error);
+  bool configure(const FrameSettings& settings, std::string& error);
+
+  // One frame. Neither allocates nor throws; a GL error is recorded, not raised.
+  void render(const View& view, float fade = 1.0f);
+  void render(const scene::Camera& camera) { render(view_of(camera)); }
+
+  // The last frame's pass times, waiting for them (outside the frame loop).
+  PassTimes collect_times();
+  // The first GL error seen since configure(), as "pass: GL error 0x...", or empty.
+  const std::string& gl_error() const { return gl_error_; }
+
+  std::vector<uint8_t> read_color() const;  // RGBA8, row 0 at the top
+  std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets_); }
+  std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets_); }
+  std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
+  std::vector<glm::vec2> read_ao_blurred() const;  // ditto; equal to read_ao_raw() with blur off
+  std::vector<glm::vec2> read_ao_final() const;        // full resolution: what the present pass used
+
+  const shared_layout::SsaoParams& ssao_params() const { return targets_.ssao_params; }
+  const shared_layout::BlurParams& blur_params(int direction) const { return targets_.blur_params[direction]; }
+  shared_layout::UpsampleParams upsample_params() const { return render::upsample_params(targets_); }
+  bool reused_ao() const { return targets_.reused_ao; }
+  bool prepass_in_use() const { return targets_.prepass_now; }
+  double raster_ms_with_prepass() const { return targets_.raster_with; }
+  double raster_ms_without_prepass() const { return targets_.raster_without; }
+  float base_radius() const { return targets_.base_radius; }
+  float inverse_far() const { return inverse_far_; }
+  const FrameSettings& settings() const { return targets_.settings(); }
+  const View& last_view() const { return view_; }
+
+  Programs& programs() { return programs_; }
+  const SceneGpu& scene() const { return scene_; }
+  ViewTargets& targets() { return targets_; }
+  const ViewTargets& targets() const { return targets_; }
+
+ private:
+  gl::Caps caps_;
+  PresentTarget target_;
+  Programs programs_;
+  SceneGpu scene_;
+  ViewTargets targets_;
+  gl::FrameTimer timer_;
+  View view_;
+  float inverse_far_ = 0.0f;
+  std::string gl_error_;
+};
+
+// Records the pass times of a frame from a FrameTimer into PassTimes; the prepass measurement of
+// Prepass::automatic is fed from the same times.
+PassTimes to_pass_times(const gl::FrameTimer::Times& times, bool gpu_timed);
+void note_raster_time(ViewTargets& targets, const PassTimes& times);
+
+}  // namespace render

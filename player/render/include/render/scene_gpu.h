@@ -1,0 +1,65 @@
+#pragma once
+// The scene's GPU data: vertex and index buffers, textures, materials and the draw list. Uploads
+// either at once or in slices of a byte budget across frames, so a new item never stalls a frame.
+#include "gl/caps.h"
+#include "gl/objects.h"
+#include "scene/scene.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace render {
+
+class SceneGpu {
+ public:
+  struct Mesh {
+    gl::VertexArray vao;
+    gl::Buffer vertices, indices;
+    GLsizei index_count = 0;
+  };
+  struct Draw {
+    int mesh;
+    int material;
+    glm::dmat4 world;
+  };
+
+  // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().
+  void begin(std::shared_ptr<const scene::Scene> scene, const gl::Caps& caps);
+  // Uploads up to about `budget_bytes` (at least one slice) and returns true once all is on the GPU.
+  // On failure returns true with failed() set and the reason in error().
+  bool step(size_t budget_bytes);
+  // begin() and every step() at once.
+  bool upload(const scene::Scene& scene, const gl::Caps& caps, std::string& error);
+
+  bool ready() const { return ready_; }
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+
+  const std::vector<Mesh>& meshes() const { return meshes_; }
+  const std::vector<gl::Texture>& textures() const { return textures_; }
+  const std::vector<scene::Material>& materials() const { return materials_; }
+  const std::vector<Draw>& draws() const { return draws_; }  // untextured first, then textured
+  double radius() const { return radius_; }
+  glm::dvec3 centre() const { return centre_; }
+  size_t bytes() const { return bytes_; }  // uploaded so far
+
+ private:
+  void finish();
+
+  std::shared_ptr<const scene::Scene> source_;
+  int max_texture_size_ = 0;
+  size_t mesh_cursor_ = 0, texture_cursor_ = 0;
+  size_t offset_ = 0;  // bytes of the current mesh, or rows of the current texture, already uploaded
+  bool ready_ = false;
+  std::string error_;
+  std::vector<Mesh> meshes_;
+  std::vector<gl::Texture> textures_;
+  std::vector<scene::Material> materials_;
+  std::vector<Draw> draws_;
+  double radius_ = 1.0;
+  glm::dvec3 centre_{0.0};
+  size_t bytes_ = 0;
+};
+
+}  // namespace render

@@ -1,0 +1,52 @@
+#pragma once
+// What one view renders into and remembers: the G-buffer and AO textures at its size, its uniform
+// blocks, its AO history (kept while the view stands still) and its depth-prepass choice.
+#include "gl/caps.h"
+#include "gl/objects.h"
+#include "render/programs.h"
+#include "render/settings.h"
+
+#include <string>
+
+namespace render {
+
+class ViewTargets {
+ public:
+  // (Re)allocates the textures when the size or AO resolution changed and fixes the per-frame
+  // constants for these settings and a scene of `scene_radius`. Returns false and says why.
+  bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
+                 std::string& error);
+  // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
+  void reset_history();
+
+  const FrameSettings& settings() const { return settings_; }
+  int ao_width() const { return ssao_params.counts.z; }
+  int ao_height() const { return ssao_params.counts.w; }
+  // The AO texture the present pass reads: raw, or blurred when a blur is on (at the AO resolution).
+  const gl::Texture& ao_result() const { return settings_.blur.mode != ssao::Blur::off ? ao_blurred : ao_raw; }
+
+  gl::Texture albedo, normal, linear_depth, depth, ao_raw, ao_temp, ao_blurred;
+  gl::Framebuffer gbuffer_fbo;
+  gl::Buffer ssao_ubo, blur_ubo[2], composite_ubo;
+  shared_layout::SsaoParams ssao_params{};
+  shared_layout::BlurParams blur_params[2]{};
+  const gl::Program* ssao_program = nullptr;
+  GLint ssao_inverse_far = -1;
+  int depth_levels = 1;
+  float base_radius = 0.0f;
+  float last_inverse_far = 0.0f;  // 1 / far of the last frame presented (the AO's g channel is depth / far)
+
+  // History: the AO of the last frame stays valid while view and projection do not change.
+  glm::dmat4 ao_view{0.0}, ao_projection{0.0};
+  bool have_ao = false, reused_ao = false;
+  // Prepass::automatic: the raster time with and without the prepass, measured on the first frames.
+  bool prepass_now = true;
+  double raster_with = -1.0, raster_without = -1.0;
+
+ private:
+  FrameSettings settings_;
+  int width_ = 0, height_ = 0;
+  bool half_ = false;
+};
+
+}  // namespace render

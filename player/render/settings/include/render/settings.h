@@ -1,0 +1,68 @@
+#pragma once
+// What a frame is rendered with, and the one key=value codec that the command line, playlists and
+// aobench share: every key is the command line's long option without its dashes, and every enum's
+// names come from one table. Pure: no GL.
+//
+// Errors: functions return false and say what was expected in `error`; nothing throws.
+#include "ssao/names.h"
+#include "ssao/params.h"
+
+#include <glm/glm.hpp>
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace render {
+
+// What the present pass shows: the shaded image, or a debug output.
+enum class Output { color, ao, normal, depth };
+inline constexpr names::Named<Output> kOutputNames[] = {
+    {Output::color, "color"}, {Output::ao, "ao"}, {Output::normal, "normal"}, {Output::depth, "depth"}};
+
+// The depth prepass pays only where overdraw is high enough that shading fragments twice costs more
+// than drawing the geometry twice; `automatic` measures both on the first two frames and keeps the faster.
+enum class Prepass { off, on, automatic };
+inline constexpr names::Named<Prepass> kPrepassNames[] = {
+    {Prepass::on, "on"}, {Prepass::off, "off"}, {Prepass::automatic, "auto"}};
+
+std::string_view name(Output output);
+std::string_view name(Prepass prepass);
+
+struct FrameSettings {
+  int width = 1024, height = 768;
+  bool ao = true;
+  ssao::AoSettings ao_settings;
+  ssao::BlurSettings blur;
+  float radius = 0.0f;        // base AO radius in world units; 0: a tenth of the scene's bounding radius
+  Output output = Output::color;
+  Prepass prepass = Prepass::automatic;
+  bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
+  // Untextured materials draw with the G-buffer variant that fetches no texture. Off only to measure
+  // what that saves (aobench's untextured-variant=off): they then sample a 1x1 white texture.
+  bool untextured_variant = true;
+  glm::vec3 background{0.05f, 0.06f, 0.08f};  // linear RGB of empty pixels
+  bool check_errors = false;    // glGetError after each pass (tests, debug runs)
+};
+
+// One key of the codec.
+struct SettingKey {
+  std::string_view key;      // also the long option: --key
+  std::string_view help;     // for --help
+  std::string choices;       // "on|off", "1..64", ...: what a value must be
+};
+std::span<const SettingKey> setting_keys();
+
+// Sets one key from its text. Unknown key or bad value: false, and `error` says
+// "<key>: expected <what>, got '<value>'".
+bool apply_setting(FrameSettings& settings, std::string_view key, std::string_view value, std::string& error);
+// The current value of `key` as apply_setting() reads it back ("" for an unknown key).
+std::string setting_value(const FrameSettings& settings, std::string_view key);
+// "key=value,key=value": each applied in turn; the first failure is reported.
+bool apply_settings(FrameSettings& settings, std::string_view list, std::string& error);
+// The keys whose values differ from `base`, as "key=value,..." (empty when none differ).
+std::string describe(const FrameSettings& settings, const FrameSettings& base);
+// The same without applying: whether `value` is valid for `key`.
+bool validate_setting(std::string_view key, std::string_view value, std::string& error);
+
+}  // namespace render

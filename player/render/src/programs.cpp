@@ -1,0 +1,74 @@
+#include "render/programs.h"
+
+#include "gl/program.h"
+#include "gl_util.h"
+
+namespace render {
+namespace {
+
+bool build_raster(RasterProgram& out, const char* fragment, const std::string& defines, std::string& error) {
+  out.program = gl::build_program({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
+  if (!out.program) return false;
+  out.model_view = gl::uniform(out.program, "u_model_view");
+  out.projection = gl::uniform(out.program, "u_projection");
+  out.normal_matrix = gl::uniform(out.program, "u_normal_matrix");
+  out.base_color = gl::uniform(out.program, "u_base_color");
+  out.texture = gl::uniform(out.program, "u_base_color_texture");
+  return true;
+}
+
+bool build_compute(gl::Program& out, const char* file, const std::string& defines, std::string& error) {
+  out = gl::build_program({{GL_COMPUTE_SHADER, file}}, defines, error);
+  return static_cast<bool>(out);
+}
+
+bool build_present(gl::Program& out, const std::string& defines, std::string& error) {
+  out = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "present.frag"}}, defines, error);
+  if (!out) return false;
+  detail::assign_units(out, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"});
+  return true;
+}
+
+}  // namespace
+
+bool Programs::build(const gl::Caps&, std::string& error) {
+  if (!build_raster(gbuffer_plain, "gbuffer.frag", "", error) ||
+      !build_raster(gbuffer_textured, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+      !build_raster(depth_only, "depth_only.frag", "", error) || !build_compute(depth_chain, "depth_chain.comp", "", error) ||
+      !build_compute(upsample, "upsample.comp", "", error) || !build_compute(blur_gaussian, "blur.comp", "", error) ||
+      !build_compute(blur_bilateral, "blur.comp", "#define BILATERAL 1\n", error) ||
+      !build_present(present_linear, "", error) || !build_present(present_encoding, "#define ENCODE_SRGB 1\n", error))
+    return false;
+  depth_chain_source_level = gl::uniform(depth_chain, "u_source_level");
+  detail::assign_units(depth_chain, {"u_linear_depth"});
+  detail::assign_units(upsample, {"u_ao", "u_linear_depth"});
+  detail::assign_units(blur_gaussian, {"u_source"});
+  detail::assign_units(blur_bilateral, {"u_source"});
+  gl::api.UseProgram(0);
+  empty_vertex_array = gl::make_vertex_array();
+
+  white = gl::make_texture();
+  gl::api.BindTexture(GL_TEXTURE_2D, white.id());
+  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_SRGB8_ALPHA8, 1, 1);
+  const uint8_t white_texel[4] = {255, 255, 255, 255};
+  gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white_texel);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api.BindTexture(GL_TEXTURE_2D, 0);
+  return true;
+}
+
+const gl::Program* Programs::ssao(ssao::Estimator estimator, std::string& error) {
+  gl::Program& program = ssao_[index(estimator)];
+  if (!program) {
+    const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n";
+    if (!build_compute(program, "ssao.comp", defines, error)) return nullptr;
+    ssao_inverse_far_[index(estimator)] = gl::uniform(program, "u_inverse_far");
+    detail::assign_units(program, {"u_linear_depth", "u_normal"});
+    gl::api.UseProgram(0);
+  }
+  return &program;
+}
+
+}  // namespace render

@@ -1,0 +1,83 @@
+#include "render/view_targets.h"
+
+#include "gl_util.h"
+
+namespace render {
+
+using detail::make_target;
+using detail::make_uniform_buffer;
+
+void ViewTargets::reset_history() {
+  have_ao = reused_ao = false;
+  raster_with = raster_without = -1.0;
+}
+
+bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
+                            std::string& error) {
+  if (settings.width < 1 || settings.height < 1 || settings.width > caps.max_texture_size ||
+      settings.height > caps.max_texture_size) {
+    error = "--size: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " is outside 1.." +
+            std::to_string(caps.max_texture_size) + " per side";
+    return false;
+  }
+  ssao_program = programs.ssao(settings.ao_settings.estimator, error);
+  if (ssao_program == nullptr) return false;
+  ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator);
+  settings_ = settings;
+  reset_history();
+
+  const int w = settings.width, h = settings.height;
+  base_radius = settings.radius > 0.0f ? settings.radius : static_cast<float>(0.1 * scene_radius);
+  ssao_params = ssao::make_ssao_params(settings.ao_settings, base_radius, w, h);
+  for (int direction = 0; direction < 2; ++direction)
+    blur_params[direction] = ssao::make_blur_params(settings.blur, direction, ao_width(), ao_height());
+
+  const bool reallocate = w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || !gbuffer_fbo;
+  if (reallocate) {
+    depth_levels = ssao::depth_chain_levels(w, h);
+    albedo = make_target(GL_RGBA8, w, h);
+    normal = make_target(GL_RGBA16F, w, h);
+    linear_depth = make_target(GL_R32F, w, h, depth_levels);
+    depth = make_target(GL_DEPTH_COMPONENT32F, w, h);
+    ao_raw = make_target(GL_RGBA16F, ao_width(), ao_height());
+    ao_temp = make_target(GL_RGBA16F, ao_width(), ao_height());
+    ao_blurred = make_target(GL_RGBA16F, ao_width(), ao_height());
+
+    gbuffer_fbo = gl::make_framebuffer();
+    gl::api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo.id());
+    gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, albedo.id(), 0);
+    gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal.id(), 0);
+    gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, linear_depth.id(), 0);
+    gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    gl::api.DrawBuffers(3, buffers);
+    const GLenum status = gl::api.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      error = "the G-buffer framebuffer is incomplete (status 0x" + std::to_string(status) + ")";
+      gbuffer_fbo.reset();
+      return false;
+    }
+    // The projection and the radii in use change with the camera; the passes refresh them.
+    ssao_ubo = make_uniform_buffer(&ssao_params, sizeof ssao_params);
+    for (int direction = 0; direction < 2; ++direction)
+      blur_ubo[direction] = make_uniform_buffer(&blur_params[direction], sizeof blur_params[direction]);
+    shared_layout::CompositeParams composite{};
+    composite_ubo = make_uniform_buffer(&composite, sizeof composite);
+    width_ = w;
+    height_ = h;
+    half_ = settings.ao_settings.half_resolution;
+  } else {
+    detail::update_uniform_buffer(ssao_ubo, &ssao_params, sizeof ssao_params);
+    for (int direction = 0; direction < 2; ++direction)
+      detail::update_uniform_buffer(blur_ubo[direction], &blur_params[direction], sizeof blur_params[direction]);
+  }
+  const GLenum gl_status = gl::api.GetError();
+  if (gl_status != GL_NO_ERROR) {
+    error = "allocating render targets raised GL error 0x" + std::to_string(gl_status);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace render

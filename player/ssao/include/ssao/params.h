@@ -1,0 +1,62 @@
+#pragma once
+// Settings of the AO passes and the uniform blocks they turn into. The renderer uploads these
+// blocks and the CPU reference reads the same ones, so both run on identical inputs.
+#include "gles_shaders/shared_layout.h"
+#include "ssao/sampling.h"
+
+#include <optional>
+#include <string_view>
+
+namespace ssao {
+
+// The defaults are the configuration aobench put on the time-error front ahead of the paper's
+// (sphere, 8 samples x 5 radii, Gaussian blur): see README, "Run time against error".
+struct AoSettings {
+  Estimator estimator = Estimator::horizon;
+  int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
+  int radii = 1;                      // 1..5, from the radius table, largest first
+  Pattern pattern = Pattern::poisson;
+  float bias = 0.03f;                 // depth bias as a fraction of each radius
+  bool half_resolution = true;        // AO at half width and height, then depth-aware upsampling
+  // Large radii read coarser levels of the depth chain. Off by default: on llvmpipe, where it was
+  // measured, building the chain costs more than the coarser reads save (README, "Run time against error").
+  bool depth_chain = false;
+  bool skip_radii = true;             // drop radii under a pixel or far beyond the scene, per frame
+  // Background pixels return after one depth read (whole work groups of them at once). Off only to
+  // measure what that saves (aobench's background=shade): the estimator then runs there as if a
+  // surface stood at the far plane, and the result is still 0.
+  bool skip_background = true;
+};
+
+enum class Blur { off, gaussian, bilateral };
+inline constexpr names::Named<Blur> kBlurNames[] = {{Blur::gaussian, "gaussian"}, {Blur::bilateral, "bilateral"}, {Blur::off, "off"}};
+std::string_view name(Blur blur);
+std::optional<Blur> parse_blur(std::string_view text);
+
+struct BlurSettings {
+  Blur mode = Blur::off;
+  int radius = 4;                     // taps each side, 1..BLUR_MAX_RADIUS
+  float sigma = 2.0f;                 // Gaussian sigma in pixels
+  float depth_tolerance = 0.05f;      // bilateral: depth difference, relative to depth, that halves trust
+};
+
+// The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
+// the full resolution (the AO resolution follows from settings.half_resolution).
+shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height);
+
+// What the camera decides each frame: the projection, and from the scene's depth range which radii
+// are worth computing and which depth-chain level each one reads.
+struct FrameView {
+  glm::mat4 projection{1.0f};
+  float nearest_depth = 1.0f;  // closest the scene's bounding sphere comes to the eye (>= near)
+  float centre_depth = 1.0f;   // distance to the scene's centre
+  float scene_radius = 1.0f;
+};
+void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& settings, const FrameView& view);
+
+// Levels of the depth chain for a full-resolution image (level 0 included).
+int depth_chain_levels(int width, int height);
+// direction 0: horizontal, 1: vertical.
+shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height);
+
+}  // namespace ssao

@@ -1,0 +1,88 @@
+#include "ssao/params.h"
+
+#include "ssao/tables.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssao {
+
+std::string_view name(Blur blur) { return names::name_of<Blur>(kBlurNames, blur); }
+std::optional<Blur> parse_blur(std::string_view text) { return names::parse<Blur>(kBlurNames, text); }
+
+shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
+  shared_layout::SsaoParams params{};
+  const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);
+  const int radii = std::clamp(settings.radii, 1, SSAO_MAX_RADII);
+  const std::span<const float> scales = radius_scales();
+  params.radii_0_3 = glm::vec4(base_radius * scales[0], base_radius * scales[1], base_radius * scales[2], base_radius * scales[3]);
+  params.radius_4_bias = glm::vec4(base_radius * scales[4], settings.bias, 0.0f, 0.0f);
+  const int shift = settings.half_resolution ? 1 : 0;
+  params.counts = glm::ivec4(samples, radii, (width + shift) >> shift, (height + shift) >> shift);
+  params.config = glm::ivec4(0, shift, width, height);
+  params.radius_range = glm::ivec4(0, radii, settings.skip_background ? 0 : 1, 0);
+  const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
+  for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
+  const std::span<const float> angles = rotation_angles();
+  for (size_t i = 0; i < angles.size(); ++i)
+    params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.0f, 0.0f);
+  return params;
+}
+
+int depth_chain_levels(int width, int height) {
+  int levels = 1;
+  while (levels < DEPTH_CHAIN_MAX_LEVELS && std::max(width, height) >> levels > 0) ++levels;
+  return levels;
+}
+
+void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& settings, const FrameView& view) {
+  const glm::mat4& projection = view.projection;
+  params.projection = projection;
+  params.unproject = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
+  const float pixels_per_unit = projection[1][1] * static_cast<float>(params.config.w) * 0.5f;
+  params.radius_4_bias.z = pixels_per_unit;
+  const int radii = params.counts.y;
+  const float radius[SSAO_MAX_RADII] = {params.radii_0_3.x, params.radii_0_3.y, params.radii_0_3.z, params.radii_0_3.w,
+                                        params.radius_4_bias.x};
+  // Radii come largest first. One far beyond the scene's size sees the same as the largest one that
+  // fits. One under a quarter pixel even where the scene is nearest keeps every sample in the shaded
+  // pixel itself, so its result is known without looking: the sphere estimator then hides exactly the
+  // samples more than the bias behind the point (whatever the turn); the hemisphere's, all above
+  // the tangent plane it compares against, and the horizon's, under a pixel, hide none.
+  int first = 0, end = radii;
+  params.radius_4_bias.w = 0.0f;
+  if (settings.skip_radii) {
+    const float too_large = 2.0f * view.scene_radius;
+    while (first + 1 < radii && radius[first + 1] >= too_large) ++first;
+    while (end > first + 1 && radius[end - 1] * pixels_per_unit / view.nearest_depth < 0.25f) --end;
+    if (end < radii && settings.estimator == Estimator::sphere) {
+      int behind = 0;
+      for (int i = 0; i < params.counts.x; ++i) behind += params.kernel[i].z < -params.radius_4_bias.y ? 1 : 0;
+      params.radius_4_bias.w = static_cast<float>(behind) / static_cast<float>(params.counts.x);
+    }
+  }
+  params.radius_range = glm::ivec4(first, end, settings.skip_background ? 0 : 1, 0);
+  // A radius spanning 2^(k+4) pixels at the scene's centre reads level k: about 16 depth texels
+  // across the radius, which is all the point samples can tell apart.
+  const int max_level = depth_chain_levels(params.config.z, params.config.w) - 1;
+  int levels[SSAO_MAX_RADII] = {};
+  for (int k = 0; k < radii; ++k) {
+    if (!settings.depth_chain) continue;
+    const float span = radius[k] * pixels_per_unit / view.centre_depth;
+    levels[k] = span > 32.0f ? std::min(static_cast<int>(std::floor(std::log2(span / 16.0f))), max_level) : 0;
+  }
+  params.lods_0_3 = glm::ivec4(levels[0], levels[1], levels[2], levels[3]);
+  params.config.x = levels[4];
+}
+
+shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height) {
+  shared_layout::BlurParams params{};
+  const int radius = std::clamp(settings.radius, 1, BLUR_MAX_RADIUS);
+  for (int i = 0; i <= radius; ++i)
+    params.weights[i].x = std::exp(-static_cast<float>(i * i) / (2.0f * settings.sigma * settings.sigma));
+  params.config = glm::ivec4(radius, direction, width, height);
+  params.bilateral = glm::vec4(settings.depth_tolerance, 0.0f, 0.0f, 0.0f);
+  return params;
+}
+
+}  // namespace ssao

@@ -1,0 +1,88 @@
+// The present pass writes into the platform's framebuffer, frame after frame, with nothing read
+// back in between: no frame may depend on what the GPU was still doing for the one before.
+#include "harness.h"
+
+namespace {
+
+using test::Harness;
+
+render::FrameSettings settings_for(int width, int height) {
+  render::FrameSettings settings;  // the defaults: half-resolution AO upsampled inside the present pass
+  settings.width = width;
+  settings.height = height;
+  settings.check_errors = true;
+  return settings;
+}
+
+scene::Camera camera_at(const Harness& h, double azimuth) {
+  scene::Framing framing;
+  framing.azimuth_deg = azimuth;
+  return scene::frame(h.scene.bounds, framing, h.renderer.settings().width, h.renderer.settings().height);
+}
+
+class Present : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Present, TwentyFramesOfAStillSceneAreBitIdentical) {
+  for (bool reuse : {false, true}) {
+    render::FrameSettings settings = settings_for(160, 120);
+    settings.reuse_static_ao = reuse;
+    Harness h;
+    ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+    const std::vector<uint8_t> first = h.renderer.read_color();
+    // Frames go out in bursts with no read-back between them, as the player's loop sends them;
+    // reading one back waits for the GPU, so only the frame after a burst is compared.
+    for (int burst = 0; burst < 5; ++burst) {
+      for (int frame = 0; frame < 4; ++frame) h.renderer.render(h.camera);
+      EXPECT_EQ(h.renderer.read_color(), first) << "after frame " << 1 + 4 * (burst + 1) << ", reuse-ao " << reuse;
+    }
+    EXPECT_EQ(h.renderer.gl_error(), "");
+  }
+}
+
+TEST_P(Present, AFrameOfAnAnimatedRunDoesNotDependOnTheFramesBeforeIt) {
+  const render::FrameSettings settings = settings_for(160, 120);
+  constexpr int kFrame = 12;
+  auto azimuth = [](int frame) { return 20.0 + 7.0 * frame; };
+  Harness run;
+  ASSERT_TRUE(run.start(GetParam(), "builtin:demo", settings));
+  for (int frame = 1; frame <= kFrame; ++frame) run.renderer.render(camera_at(run, azimuth(frame)));
+  const std::vector<uint8_t> after_run = run.renderer.read_color();
+  // The same frame, reached by another path: straight after the first frame, and after frames
+  // that went the other way round.
+  Harness direct;
+  ASSERT_TRUE(direct.start(GetParam(), "builtin:demo", settings));
+  direct.renderer.render(camera_at(direct, azimuth(kFrame)));
+  EXPECT_EQ(direct.renderer.read_color(), after_run);
+  for (int frame = 2 * kFrame; frame > kFrame; --frame) direct.renderer.render(camera_at(direct, azimuth(frame)));
+  direct.renderer.render(camera_at(direct, azimuth(kFrame)));
+  EXPECT_EQ(direct.renderer.read_color(), after_run);
+  EXPECT_EQ(run.renderer.gl_error(), "");
+  EXPECT_EQ(direct.renderer.gl_error(), "");
+}
+
+TEST_P(Present, FadeDarkensTheWholeImage) {
+  render::FrameSettings settings = settings_for(64, 48);
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+  const std::vector<uint8_t> full = h.renderer.read_color();
+  h.renderer.render(render::view_of(h.camera), 0.0f);
+  const std::vector<uint8_t> black = h.renderer.read_color();
+  for (size_t i = 0; i < black.size(); i += 4) {
+    ASSERT_EQ(black[i], 0) << i;
+    ASSERT_EQ(black[i + 3], 255) << i;
+  }
+  h.renderer.render(render::view_of(h.camera), 0.5f);
+  const std::vector<uint8_t> half = h.renderer.read_color();
+  size_t darker = 0, lit = 0;
+  for (size_t i = 0; i < half.size(); i += 4) {
+    if (full[i + 1] < 8) continue;
+    ++lit;
+    darker += half[i + 1] < full[i + 1] ? 1 : 0;
+  }
+  EXPECT_GT(lit, 0u);
+  EXPECT_EQ(darker, lit);
+}
+
+INSTANTIATE_TEST_SUITE_P(Platforms, Present, ::testing::Values("egl", "osmesa"), test::platform_name);
+
+}  // namespace

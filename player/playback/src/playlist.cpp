@@ -266,7 +266,8 @@ bool read_keys(Parser& p, const toml::table& cam, const std::string& prefix, dou
   }
   if (!n) return p.fail(cam.source(), field, "at least 2 keys for motion \"orbit\"", "nothing");
   const auto* a = n->as_array();
-  if (!a || !a->is_array_of_tables()) return p.fail(n->source(), field, what, a ? describe(*n) : type_of(*n));
+  if (!a) return p.fail(n->source(), field, what, type_of(*n));
+  if (!a->empty() && !a->is_array_of_tables()) return p.fail(n->source(), field, what, "an array of non-tables");
   if (a->size() < 2) return p.fail(n->source(), field, "at least 2 keys", describe(*n));
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table& kt = *a->get(i)->as_table();

@@ -477,7 +477,7 @@ TEST(Timeline, EmptyPlaylistPlaysNothing) {
   EXPECT_EQ(at(tl, 3).item, -1);
 }
 
-TEST(Camera, TurntableStillAndFov) {
+TEST(CameraPath, TurntableStillAndFov) {
   CameraPath turn;
   turn.period_s = 20;
   turn.azimuth_deg = 30;
@@ -497,7 +497,7 @@ TEST(Camera, TurntableStillAndFov) {
   for (double t : {0.0, 7.0, 1e6}) EXPECT_NEAR(camera_at(still, t).azimuth_deg, 315, 1e-9);
 }
 
-TEST(Camera, OrbitThroughKeysThenHolds) {
+TEST(CameraPath, OrbitThroughKeysThenHolds) {
   CameraPath orbit;
   orbit.motion = Motion::orbit;
   orbit.fov_deg = 40;
@@ -519,7 +519,7 @@ TEST(Camera, OrbitThroughKeysThenHolds) {
   }
 }
 
-TEST(Camera, OrbitStaysWithinTheKeysRangeAndWrapsAzimuth) {
+TEST(CameraPath, OrbitStaysWithinTheKeysRangeAndWrapsAzimuth) {
   CameraPath orbit;
   orbit.motion = Motion::orbit;
   // Uneven spacing makes the spline overshoot below the lowest distance between the last two keys.

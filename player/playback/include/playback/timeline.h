@@ -64,8 +64,9 @@ class Timeline {
   // Buttons. next(): the item that follows starts now (loop = false, last item: finished).
   // previous(): within the first 2 s of an item, the item before it (at the very first item of a
   // non-looping playlist: its start), else the start of the current item. restart(): the start of
-  // the current item (wallclock: re-attach, see above). All of them cut; all but restart() of an
-  // attached wallclock timeline start an item (sequence + 1).
+  // the current item; on a detached wallclock timeline: re-attach (and un-pause), see above. Each
+  // cuts and starts an item (sequence + 1), except restart() of an attached wallclock timeline,
+  // which does nothing.
   void next(double now);
   void previous(double now);
   void restart(double now);
@@ -81,7 +82,8 @@ class Timeline {
 
   // Hot reload. Sequential: keeps playing the item with the same scene path (the same index if it
   // still has that scene, else the first with it) at the same item_time and sequence; else starts
-  // the first item. Every item is playable again. Always a cut.
+  // the first item. Wallclock: the schedule decides (an item start). Every item is playable again.
+  // Always a cut.
   void replace(Playlist playlist, double now);
 
   const Playlist& playlist() const { return playlist_; }

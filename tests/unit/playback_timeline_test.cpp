@@ -1,0 +1,550 @@
+// The timeline: which item, how far into it, from where and how bright, for times the test chooses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "playback/timeline.h"
+
+using namespace playback;
+
+namespace {
+
+constexpr double t0 = 1000.0;           // the caller's monotonic clock at construction (any origin)
+constexpr double wall0 = 1700000000.0;  // a multiple of every cycle used below: position 0
+
+Playlist make(std::vector<double> durations, double fade = 0, bool loop = true) {
+  Playlist pl;
+  pl.source = "test";
+  pl.fade_s = fade;
+  pl.loop = loop;
+  for (std::size_t i = 0; i < durations.size(); ++i) {
+    Item it;
+    it.scene = "scene" + std::to_string(i) + ".glb";
+    it.duration_s = durations[i];
+    pl.items.push_back(it);
+  }
+  return pl;
+}
+
+Frame at(Timeline& tl, double t) { return tl.at(t0 + t, wall0 + t); }
+
+struct Expect {
+  double t;  // seconds after construction
+  int item;
+  double item_time;
+};
+
+void check(Timeline& tl, const std::vector<Expect>& table) {
+  for (const Expect& e : table) {
+    SCOPED_TRACE("t = " + std::to_string(e.t));
+    const Frame f = at(tl, e.t);
+    EXPECT_EQ(f.item, e.item);
+    EXPECT_NEAR(f.item_time, e.item_time, 1e-9);
+  }
+}
+
+// The items a shuffled looping timeline plays, one pass of `n` unit-length items at a time.
+std::vector<std::vector<int>> passes(std::uint64_t seed, int n, int count) {
+  Playlist pl = make(std::vector<double>(static_cast<std::size_t>(n), 1.0));
+  pl.shuffle = true;
+  pl.seed = seed;
+  Timeline tl(pl, t0, wall0);
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(count));
+  for (int p = 0; p < count; ++p)
+    for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(p)].push_back(at(tl, p * n + i + 0.5).item);
+  return out;
+}
+
+}  // namespace
+
+TEST(Timeline, ItemAtTimesAndLoopWrap) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  check(tl, {{0, 0, 0}, {3.5, 0, 3.5}, {4, 1, 0}, {9.75, 1, 5.75}, {10, 2, 0}, {19.5, 2, 9.5},
+             {20, 0, 0}, {25, 1, 1}, {41, 0, 1}});
+}
+
+TEST(Timeline, EarlierNowIsTreatedAsEqual) {
+  Timeline tl(make({4, 6}), t0, wall0);
+  check(tl, {{5, 1, 1}, {2, 1, 1}, {5.5, 1, 1.5}});
+}
+
+TEST(Timeline, NextItemAndSequence) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  Frame f = at(tl, 0);
+  EXPECT_EQ(f.next_item, 1);
+  EXPECT_EQ(f.sequence, 1u);
+  f = at(tl, 12);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_EQ(f.next_item, 0);
+  EXPECT_EQ(f.sequence, 3u);
+  f = at(tl, 21);
+  EXPECT_EQ(f.sequence, 4u);  // the same item again is a new play
+}
+
+TEST(Timeline, NoLoopFinishesHoldingTheLastPose) {
+  Timeline tl(make({4, 6}, 1.0, false), t0, wall0);
+  Frame f = at(tl, 9.9);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.next_item, -1);
+  EXPECT_FALSE(f.finished);
+  EXPECT_EQ(f.fade, 1.0f);  // nothing follows, so no fade out
+  for (double t : {10.0, 50.0}) {
+    f = at(tl, t);
+    EXPECT_TRUE(f.finished);
+    EXPECT_EQ(f.item, 1);
+    EXPECT_EQ(f.item_time, 6.0);
+    EXPECT_NEAR(f.camera.azimuth_deg, 30 + 360 * 6.0 / 20, 1e-9);
+    EXPECT_EQ(f.next_item, -1);
+    EXPECT_EQ(f.sequence, 2u);
+  }
+}
+
+TEST(Timeline, FadeAtBoundaries) {
+  // fade_s = 1: out over the last 0.5 s, in over the first 0.5 s of the next.
+  Timeline tl(make({4, 6}, 1.0), t0, wall0);
+  const std::vector<std::pair<double, float>> table = {
+      {0, 1.0f},     // the very first start does not fade in
+      {0.25, 1.0f}, {3.5, 1.0f}, {3.75, 0.5f}, {3.875, 0.25f},
+      {4.0, 0.0f},   // item 1 starts in black
+      {4.25, 0.5f}, {4.5, 1.0f}, {9.5, 1.0f}, {9.75, 0.5f},
+      {10.0, 0.0f},  // the loop back to item 0 fades like any other change
+      {10.125, 0.25f}, {11, 1.0f}};
+  for (const auto& [t, fade] : table) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    EXPECT_FLOAT_EQ(at(tl, t).fade, fade);
+  }
+}
+
+TEST(Timeline, NoFadeWhenZeroOrOnlyOneItem) {
+  Timeline zero(make({4, 6}, 0.0), t0, wall0);
+  Timeline one(make({4}, 2.0), t0, wall0);
+  for (double t : {0.0, 3.9, 4.0, 4.1, 7.99, 8.0}) {
+    SCOPED_TRACE(t);
+    EXPECT_EQ(at(zero, t).fade, 1.0f);
+    EXPECT_EQ(at(one, t).fade, 1.0f);
+  }
+}
+
+TEST(Timeline, ShortItemsFadeNoFurtherThanBlack) {
+  Timeline tl(make({0.5, 0.5}, 2.0), t0, wall0);
+  EXPECT_FLOAT_EQ(at(tl, 0.25).fade, 0.25f);  // fading out from the start
+  EXPECT_FLOAT_EQ(at(tl, 0.75).fade, 0.25f);  // in and out at once: the darker wins
+}
+
+TEST(Timeline, PauseFreezesItemTimeAndCamera) {
+  Playlist pl = make({4, 6});
+  pl.items[0].camera.period_s = 8;
+  pl.items[0].camera.azimuth_deg = 0;
+  Timeline tl(pl, t0, wall0);
+  Frame f = at(tl, 2);
+  EXPECT_NEAR(f.camera.azimuth_deg, 90, 1e-9);
+  tl.pause(t0 + 2);
+  EXPECT_TRUE(tl.paused());
+  for (double t : {2.0, 3.0, 50.0, 5000.0}) {
+    f = at(tl, t);
+    EXPECT_EQ(f.item, 0);
+    EXPECT_EQ(f.item_time, 2.0);
+    EXPECT_NEAR(f.camera.azimuth_deg, 90, 1e-9);
+    EXPECT_FALSE(f.cut);
+  }
+  tl.resume(t0 + 5000);
+  EXPECT_FALSE(tl.paused());
+  f = at(tl, 5001);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_NEAR(f.item_time, 3, 1e-9);
+  EXPECT_NEAR(f.camera.azimuth_deg, 135, 1e-9);
+  EXPECT_FALSE(f.cut);
+  check(tl, {{5002, 1, 0}});
+}
+
+TEST(Timeline, NextPreviousRestart) {
+  Timeline tl(make({10, 10, 10}), t0, wall0);
+  EXPECT_EQ(at(tl, 0).item, 0);
+  tl.next(t0 + 1);
+  Frame f = at(tl, 1);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_EQ(f.sequence, 2u);
+  EXPECT_TRUE(f.cut);
+  // 2 s or more into an item: previous() goes back to its start.
+  tl.previous(t0 + 3);
+  f = at(tl, 3);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_EQ(f.sequence, 3u);
+  // Within the first 2 s: the item before.
+  tl.previous(t0 + 4.9);
+  check(tl, {{4.9, 0, 0}, {6, 0, 1.1}});
+  // Before the first item of a looping playlist comes the last.
+  tl.previous(t0 + 6);
+  check(tl, {{6, 2, 0}, {16, 0, 0}});
+  tl.restart(t0 + 19);
+  f = at(tl, 19);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+  check(tl, {{28, 0, 9}, {29, 1, 0}});
+}
+
+TEST(Timeline, ButtonsAtTheEndsOfANonLoopingPlaylist) {
+  Timeline tl(make({10, 10}, 0, false), t0, wall0);
+  tl.previous(t0 + 0.5);  // nothing before the first item: its start
+  check(tl, {{0.5, 0, 0}});
+  tl.next(t0 + 1);
+  tl.next(t0 + 2);  // past the last item: finished
+  Frame f = at(tl, 2);
+  EXPECT_TRUE(f.finished);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 10.0);
+  tl.next(t0 + 3);  // nothing further
+  EXPECT_TRUE(at(tl, 3).finished);
+  tl.previous(t0 + 4);  // from the end: the last item again
+  f = at(tl, 4);
+  EXPECT_FALSE(f.finished);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+}
+
+TEST(Timeline, UnplayableItemsAreSkipped) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  tl.set_playable(1, false);
+  Frame f = at(tl, 0);
+  EXPECT_EQ(f.next_item, 2);
+  check(tl, {{3.9, 0, 3.9}, {4, 2, 0}, {13.9, 2, 9.9}, {14, 0, 0}, {18, 2, 0}});
+  tl.set_playable(1, true);
+  check(tl, {{28, 0, 0}, {32, 1, 0}});
+}
+
+TEST(Timeline, CurrentItemMarkedUnplayableGivesWay) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  at(tl, 1);
+  tl.set_playable(0, false);  // its scene failed to load
+  Frame f = at(tl, 1.5);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+  EXPECT_EQ(f.sequence, 2u);
+}
+
+TEST(Timeline, NothingPlayable) {
+  Timeline tl(make({4, 6}), t0, wall0);
+  at(tl, 1);
+  tl.set_playable(0, false);
+  tl.set_playable(1, false);
+  Frame f = at(tl, 2);
+  EXPECT_EQ(f.item, -1);
+  EXPECT_EQ(f.next_item, -1);
+  EXPECT_TRUE(f.cut);
+  EXPECT_FALSE(f.finished);
+  tl.next(t0 + 3);
+  tl.previous(t0 + 3);
+  EXPECT_EQ(at(tl, 3).item, -1);
+  tl.set_playable(1, true);
+  f = at(tl, 5);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+}
+
+TEST(Timeline, AStallOfTenHoursLandsOnTheRightItem) {
+  // Cycle 20 s: 36000 s is 1800 cycles, 13 s more is item 2 at 3 s.
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  at(tl, 1);
+  Frame f = at(tl, 36013);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 3, 1e-6);
+  EXPECT_EQ(f.sequence, 1u + 1800 * 3 + 2);
+  EXPECT_TRUE(f.cut);
+  // With an unplayable item the cycle is 14 s: 36013 - 1 = 2572 cycles + 4 s, then 13 more s -> item 2 at 9.
+  Timeline skip(make({4, 6, 10}), t0, wall0);
+  skip.set_playable(1, false);
+  check(skip, {{1, 0, 1}, {36021, 2, 9}});
+}
+
+TEST(Timeline, AStallOfDecadesOverTinyItemsIsArithmetic) {
+  // 1e9 s over quarter-second items would be billions of steps if walked one by one.
+  Timeline tl(make({0.5, 0.25, 0.25}), t0, wall0);
+  check(tl, {{0.1, 0, 0.1}, {1e9 + 0.625, 1, 0.125}});
+}
+
+TEST(Timeline, StallLandsWhereSteppingLands) {
+  Playlist pl = make({1, 2, 3, 0.5, 1.5});
+  pl.shuffle = true;
+  pl.seed = 99;
+  Timeline stepped(pl, t0, wall0), stalled(pl, t0, wall0);
+  stepped.set_playable(2, false);
+  stalled.set_playable(2, false);
+  Frame s;
+  for (double t = 0; t <= 5000; t += 0.25) s = at(stepped, t);
+  const Frame j = at(stalled, 5000);
+  EXPECT_EQ(j.item, s.item);
+  EXPECT_NEAR(j.item_time, s.item_time, 1e-6);
+  EXPECT_EQ(j.sequence, s.sequence);
+  EXPECT_EQ(j.next_item, s.next_item);
+}
+
+TEST(Timeline, ShuffleIsDeterministicAndAPermutationPerPass) {
+  const auto a = passes(7, 5, 6), b = passes(7, 5, 6), c = passes(8, 5, 6);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  // Pinned: mt19937_64 is fixed by the standard and the draws are our own, so every platform agrees.
+  EXPECT_EQ(a[0], (std::vector<int>{1, 4, 0, 2, 3}));
+  std::set<std::vector<int>> distinct;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    SCOPED_TRACE(p);
+    std::vector<int> sorted = a[p];
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, (std::vector<int>{0, 1, 2, 3, 4}));
+    if (p > 0) {
+      EXPECT_NE(a[p].front(), a[p - 1].back()) << "the same item twice in a row";
+    }
+    distinct.insert(a[p]);
+  }
+  EXPECT_GE(distinct.size(), 5u);  // a new order every pass
+}
+
+TEST(Timeline, WallclockPlayersAgreeWithoutTalking) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  pl.shuffle = true;  // ignored by the wallclock schedule
+  Timeline a(pl, 100.0, wall0);
+  Timeline b(pl, 77777.0, wall0 + 3);  // started later, on another machine's monotonic clock
+  for (double w : {5.0, 5.5, 13.0, 19.99, 20.0, 36013.0}) {
+    SCOPED_TRACE(w);
+    const Frame fa = a.at(100.0 + w, wall0 + w), fb = b.at(77777.0 + w, wall0 + w);
+    EXPECT_EQ(fa.item, fb.item);
+    EXPECT_NEAR(fa.item_time, fb.item_time, 1e-9);
+    EXPECT_NEAR(fa.camera.azimuth_deg, fb.camera.azimuth_deg, 1e-6);
+  }
+  const std::vector<Expect> table = {{36013 + 1, 2, 4}, {36020, 0, 0}, {36020 + 4.5, 1, 0.5}};
+  for (const Expect& e : table) {
+    const Frame f = a.at(100.0 + e.t, wall0 + e.t);
+    EXPECT_EQ(f.item, e.item);
+    EXPECT_NEAR(f.item_time, e.item_time, 1e-6);
+  }
+  // The position comes from the wall clock alone: a 10-hour stall of the caller lands on the slot.
+  Timeline c(pl, 0.0, wall0);
+  const Frame f = c.at(36000.0, wall0 + 36000 + 13);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 3, 1e-6);
+  EXPECT_EQ(f.next_item, 0);
+}
+
+TEST(Timeline, WallclockUnplayableSlotShowsTheNextItem) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  tl.set_playable(1, false);
+  Frame f = at(tl, 1);
+  EXPECT_EQ(f.next_item, 2);
+  const std::uint64_t seq = f.sequence;
+  f = at(tl, 5);  // slot 1 shows item 2
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 1, 1e-9);
+  EXPECT_EQ(f.sequence, seq + 1);
+  EXPECT_EQ(f.next_item, 2);
+  f = at(tl, 10);  // slot 2 starts on time: the schedule has not shifted
+  EXPECT_EQ(f.item, 2);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+  EXPECT_EQ(f.sequence, seq + 2);
+  check(tl, {{20, 0, 0}});
+}
+
+TEST(Timeline, WallclockButtonsDetachUntilRestart) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  check(tl, {{5, 1, 1}});
+  tl.pause(t0 + 5);
+  check(tl, {{9, 1, 1}, {30, 1, 1}});  // the wall clock moved on; this player holds
+  tl.resume(t0 + 30);
+  check(tl, {{32, 1, 3}, {35, 2, 0}});  // now on its own clock, in playlist order
+  tl.next(t0 + 36);
+  check(tl, {{36, 0, 0}});
+  tl.restart(t0 + 37);  // back on the schedule: wall position 37 mod 20 = 17 is item 2 at 7
+  const Frame f = at(tl, 37);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 7, 1e-9);
+  EXPECT_TRUE(f.cut);
+  EXPECT_FALSE(tl.paused());
+  tl.restart(t0 + 38);  // attached: nothing to do
+  EXPECT_FALSE(at(tl, 38).cut);
+}
+
+TEST(Timeline, WallclockPreviousUsesTheTwoSecondRule) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  at(tl, 4.5);
+  tl.previous(t0 + 5);  // 1 s into item 1 (extrapolated from the last at()): item 0
+  check(tl, {{5, 0, 0}});
+}
+
+TEST(Timeline, WallclockStepIsACut) {
+  Playlist pl = make({40});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  EXPECT_TRUE(tl.at(t0 + 1, wall0 + 1).cut);
+  EXPECT_FALSE(tl.at(t0 + 2, wall0 + 2).cut);
+  EXPECT_TRUE(tl.at(t0 + 3, wall0 + 13).cut);  // NTP stepped the clock by 10 s
+  EXPECT_FALSE(tl.at(t0 + 4, wall0 + 14).cut);
+}
+
+TEST(Timeline, CutExactlyAtChanges) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  struct Step {
+    double t;
+    bool cut;
+  };
+  const std::vector<Step> table = {{0, true}, {1, false}, {3.99, false}, {4, true}, {4.01, false}, {9, false}, {10.5, true}};
+  for (const Step& s : table) {
+    SCOPED_TRACE(s.t);
+    EXPECT_EQ(at(tl, s.t).cut, s.cut);
+  }
+  tl.next(t0 + 11);
+  EXPECT_TRUE(at(tl, 11).cut);
+  EXPECT_FALSE(at(tl, 11.5).cut);
+  tl.pause(t0 + 12);
+  EXPECT_FALSE(at(tl, 13).cut);
+  tl.resume(t0 + 13);
+  EXPECT_FALSE(at(tl, 14).cut);
+  tl.restart(t0 + 14);
+  EXPECT_TRUE(at(tl, 14).cut);
+  tl.replace(make({4, 6, 10}), t0 + 15);
+  EXPECT_TRUE(at(tl, 15).cut);
+  EXPECT_FALSE(at(tl, 15.5).cut);
+}
+
+TEST(Timeline, ReplaceKeepsTheCurrentItem) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  Frame f = at(tl, 5);
+  ASSERT_EQ(f.item, 1);
+  const std::uint64_t seq = f.sequence;
+
+  Playlist same_place = make({4, 6, 10});
+  same_place.items[0].scene = "new.glb";
+  tl.replace(same_place, t0 + 5);
+  f = at(tl, 5.5);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_NEAR(f.item_time, 1.5, 1e-9);
+  EXPECT_EQ(f.sequence, seq);  // the same play goes on
+
+  Playlist moved = make({6, 3});
+  moved.items[0].scene = "scene1.glb";  // the playing scene is now first
+  moved.items[1].scene = "other.glb";
+  tl.replace(moved, t0 + 6);
+  f = at(tl, 6);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_NEAR(f.item_time, 2, 1e-9);
+  EXPECT_EQ(f.sequence, seq);
+  check(tl, {{9.5, 0, 5.5}, {10.5, 1, 0.5}});  // started at 4, the new duration 6 ends it at 10
+
+  Playlist gone = make({5, 5});
+  gone.items[0].scene = "x.glb";
+  gone.items[1].scene = "y.glb";
+  tl.replace(gone, t0 + 11);
+  f = at(tl, 11);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_EQ(f.sequence, seq + 2);
+  EXPECT_EQ(tl.playlist().items[1].scene, "y.glb");
+}
+
+TEST(Timeline, ReplaceMakesEveryItemPlayableAgain) {
+  Timeline tl(make({4, 6}), t0, wall0);
+  tl.set_playable(1, false);
+  tl.replace(make({4, 6}), t0 + 1);
+  check(tl, {{4.5, 1, 0.5}});
+}
+
+TEST(Timeline, ReplaceShorterItemMovesOn) {
+  Timeline tl(make({10, 10}), t0, wall0);
+  at(tl, 7);
+  tl.replace(make({5, 10}), t0 + 7);
+  check(tl, {{7, 1, 2}});
+}
+
+TEST(Timeline, EmptyPlaylistPlaysNothing) {
+  Timeline tl(Playlist{}, t0, wall0);
+  const Frame f = at(tl, 1);
+  EXPECT_EQ(f.item, -1);
+  EXPECT_EQ(f.next_item, -1);
+  tl.next(t0 + 2);
+  tl.previous(t0 + 2);
+  tl.restart(t0 + 2);
+  EXPECT_EQ(at(tl, 3).item, -1);
+}
+
+TEST(CameraPath, TurntableStillAndFov) {
+  CameraPath turn;
+  turn.period_s = 20;
+  turn.azimuth_deg = 30;
+  turn.fov_deg = 50;
+  const std::vector<std::pair<double, double>> table = {{0, 30}, {5, 120}, {16.5, 327}, {20, 30}, {100005, 120}};
+  for (const auto& [t, az] : table) {
+    SCOPED_TRACE(t);
+    const Camera c = camera_at(turn, t);
+    EXPECT_NEAR(c.azimuth_deg, az, 1e-9);
+    EXPECT_EQ(c.elevation_deg, 20.0);
+    EXPECT_EQ(c.distance, 1.0);
+    EXPECT_EQ(c.fov_deg, 50.0);
+  }
+  CameraPath still;
+  still.motion = Motion::still;
+  still.azimuth_deg = -45;
+  for (double t : {0.0, 7.0, 1e6}) EXPECT_NEAR(camera_at(still, t).azimuth_deg, 315, 1e-9);
+}
+
+TEST(CameraPath, OrbitThroughKeysThenHolds) {
+  CameraPath orbit;
+  orbit.motion = Motion::orbit;
+  orbit.fov_deg = 40;
+  orbit.keys = {{0, 0, 10, 1.2}, {2, 90, 30, 1.0}, {4, 180, 10, 1.2}};
+  struct Row {
+    double t, az, el, dist;
+  };
+  // At t = 1: Hermite with tangents 0 (end) and (180 - 0) / 4 = 45 deg/s: 45 - 0.125 * 2 * 45 = 33.75.
+  // Elevation and distance peak at the middle key, whose tangent is 0: a plain ease.
+  const std::vector<Row> table = {{-1, 0, 10, 1.2}, {0, 0, 10, 1.2}, {1, 33.75, 20, 1.1}, {2, 90, 30, 1.0},
+                                  {3, 146.25, 20, 1.1}, {4, 180, 10, 1.2}, {60, 180, 10, 1.2}};
+  for (const Row& r : table) {
+    SCOPED_TRACE(r.t);
+    const Camera c = camera_at(orbit, r.t);
+    EXPECT_NEAR(c.azimuth_deg, r.az, 1e-9);
+    EXPECT_NEAR(c.elevation_deg, r.el, 1e-9);
+    EXPECT_NEAR(c.distance, r.dist, 1e-9);
+    EXPECT_EQ(c.fov_deg, 40.0);
+  }
+}
+
+TEST(CameraPath, OrbitStaysWithinTheKeysRangeAndWrapsAzimuth) {
+  CameraPath orbit;
+  orbit.motion = Motion::orbit;
+  // Uneven spacing makes the spline overshoot below the lowest distance between the last two keys.
+  orbit.keys = {{0, 0, 0, 2.0}, {0.1, 400, 89, 0.5}, {10, 720, 89, 0.5}};
+  for (double t = 0; t <= 10; t += 0.05) {
+    SCOPED_TRACE(t);
+    const Camera c = camera_at(orbit, t);
+    EXPECT_GE(c.distance, 0.5);
+    EXPECT_LE(c.elevation_deg, 89.0);
+    EXPECT_GE(c.azimuth_deg, 0.0);
+    EXPECT_LT(c.azimuth_deg, 360.0);
+  }
+  EXPECT_NEAR(camera_at(orbit, 10).azimuth_deg, 0, 1e-9);  // 720 is two turns
+}
+
+TEST(Timeline, FrameCameraFollowsTheItem) {
+  Playlist pl = make({10, 10});
+  pl.items[1].camera.motion = Motion::still;
+  pl.items[1].camera.azimuth_deg = 12;
+  pl.items[1].camera.elevation_deg = -30;
+  Timeline tl(pl, t0, wall0);
+  Frame f = at(tl, 5);
+  EXPECT_NEAR(f.camera.azimuth_deg, 30 + 90, 1e-9);
+  f = at(tl, 15);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_NEAR(f.camera.azimuth_deg, 12, 1e-9);
+  EXPECT_EQ(f.camera.elevation_deg, -30.0);
+}

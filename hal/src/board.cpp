@@ -14,6 +14,49 @@ std::string GpioLine::describe() const {
 
 namespace {
 
+struct ActionName {
+  Action action;
+  std::string_view name;
+};
+constexpr ActionName kActionNames[] = {{Action::none, "none"},       {Action::next, "next"},   {Action::previous, "previous"},
+                                       {Action::pause, "pause"},     {Action::ao, "ao"},       {Action::output, "output"},
+                                       {Action::restart, "restart"}, {Action::check, "check"}};
+
+struct ButtonDefault {
+  std::string_view name;
+  Action action, long_action;
+  std::string_view key;
+};
+constexpr ButtonDefault kButtonDefaults[] = {{"play", Action::pause, Action::restart, "space"},
+                                             {"next", Action::next, Action::none, "n"},
+                                             {"previous", Action::previous, Action::none, "p"},
+                                             {"check", Action::check, Action::none, "c"}};
+
+}  // namespace
+
+std::string_view to_string(Action a) {
+  for (const ActionName& entry : kActionNames)
+    if (entry.action == a) return entry.name;
+  return "?";
+}
+
+bool parse_action(std::string_view text, Action& out) {
+  for (const ActionName& entry : kActionNames)
+    if (entry.name == text) {
+      out = entry.action;
+      return true;
+    }
+  return false;
+}
+
+std::string action_names() {
+  std::string text;
+  for (const ActionName& entry : kActionNames) text += (text.empty() ? "" : ", ") + std::string(entry.name);
+  return text;
+}
+
+namespace {
+
 // Typed field access whose errors name the file, the field and what was expected.
 class Fields {
 public:
@@ -122,6 +165,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     b.name = f.str("name", "");
     b.consumer = f.str("consumer", b.consumer);
     b.status_file = f.str("status_file", "");
+    b.self_check_interval_s = static_cast<double>(f.integer("self_check_interval_s", 0, 0, 86400 * 7));
   }
   ButtonTiming defaults;
   if (const auto* t = table("buttons")) defaults = read_timing(Fields(*t, source_name, "buttons."), defaults);
@@ -132,6 +176,16 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
       c.name = f.str("name", "", true);
       c.line = read_line(f);
       c.timing = read_timing(f, defaults);
+      for (const ButtonDefault& d : kButtonDefaults)
+        if (d.name == c.name) {
+          c.action = d.action;
+          c.long_action = d.long_action;
+          c.key = d.key;
+        }
+      if (!parse_action(f.str("action", std::string(to_string(c.action))), c.action)) f.fail("action", "one of " + action_names());
+      if (!parse_action(f.str("long_press_action", std::string(to_string(c.long_action))), c.long_action))
+        f.fail("long_press_action", "one of " + action_names());
+      c.key = f.str("key", c.key);
       b.buttons.push_back(std::move(c));
     }
   }
@@ -171,6 +225,37 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
   }
   return b;
 }
+
+// Used when no board file is given: what a Pi with three buttons and two LEDs would have.
+constexpr const char* kBuiltinBoardText = R"(
+[board]
+name = "built-in mock board"
+self_check_interval_s = 0
+[buttons]
+debounce_ms = 20
+long_press_ms = 600
+[[button]]
+name = "play"
+line = "GPIO17"
+[[button]]
+name = "next"
+line = "GPIO27"
+repeat_delay_ms = 400
+repeat_interval_ms = 100
+[[button]]
+name = "check"
+line = "GPIO22"
+[[led]]
+name = "status"
+line = "GPIO23"
+[[led]]
+name = "error"
+line = "GPIO24"
+[camera]
+device = "/dev/v4l/by-id/mock-camera"
+)";
+
+BoardConfig builtin_mock_board() { return parse_board(kBuiltinBoardText, "<built-in board>"); }
 
 BoardConfig load_board(const std::string& path) {
   std::ifstream in(path);

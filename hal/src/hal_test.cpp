@@ -15,34 +15,6 @@ namespace hal {
 
 namespace {
 
-// Used when no board file is given: what a Pi with three buttons and two LEDs would have.
-constexpr const char* kBuiltinBoard = R"(
-[board]
-name = "built-in mock board"
-[buttons]
-debounce_ms = 20
-long_press_ms = 600
-[[button]]
-name = "play"
-line = "GPIO17"
-[[button]]
-name = "next"
-line = "GPIO27"
-repeat_delay_ms = 400
-repeat_interval_ms = 100
-[[button]]
-name = "check"
-line = "GPIO22"
-[[led]]
-name = "status"
-line = "GPIO23"
-[[led]]
-name = "error"
-line = "GPIO24"
-[camera]
-device = "/dev/v4l/by-id/mock-camera"
-)";
-
 // Bounce on "play", a long press on "check", a held "next" that auto-repeats.
 constexpr const char* kBuiltinScript = R"(
 100 play press
@@ -78,7 +50,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
   BoardConfig board;
   Devices dev;
   try {
-    board = options.board_file.empty() ? parse_board(kBuiltinBoard, "<built-in board>") : load_board(options.board_file);
+    board = options.board_file.empty() ? builtin_mock_board() : load_board(options.board_file);
     dev = open_devices(board, backend, clock);
     if (options.board_file.empty() && backend == Backend::Mock) {
       std::vector<MockButtonSpec> specs;
@@ -185,7 +157,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
         DisplayChecker checker;
         const SelfCheckResult r = checker.check(presented, layout, frame);
         out << "self-check: " << (r.passed ? "pass" : "FAIL") << " score " << r.score << " (" << r.reason << ")\n";
-        report.last_check = CheckSummary{r.passed, r.score, r.reason, clock.now()};
+        report.self_check = CheckSummary{r.passed, r.score, r.reason, clock.now()};
         ok = ok && r.passed;
       } else if (mock) {
         out << "self-check: not run: the mock camera plays image files, not a frame hal-test presented\n";

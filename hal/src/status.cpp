@@ -150,16 +150,20 @@ void Status::arm_timer() {
 std::string report_to_json(const StatusReport& report) {
   nlohmann::json j;
   j["state"] = report.state;
-  j["current_item"] = report.current_item;
+  j["item"] = report.item;
+  j["frames"] = report.frames;
+  j["fps"] = report.fps;
+  j["frame_ms_p50"] = report.frame_ms_p50;
+  j["frame_ms_p99"] = report.frame_ms_p99;
   j["errors"] = report.errors;
-  if (report.last_check) {
-    const auto& c = *report.last_check;
-    j["last_check"] = {{"passed", c.passed},
+  if (report.self_check) {
+    const auto& c = *report.self_check;
+    j["self_check"] = {{"passed", c.passed},
                        {"score", c.score},
                        {"reason", c.reason},
                        {"monotonic_ms", std::chrono::duration_cast<milliseconds>(c.time).count()}};
   } else {
-    j["last_check"] = nullptr;
+    j["self_check"] = nullptr;
   }
   return j.dump(2) + "\n";
 }

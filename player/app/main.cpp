@@ -1,4 +1,5 @@
 // The player's command line: a thin layer over the app library.
+#include "app/play_command.h"
 #include "app/render_command.h"
 #include "hal/hal_test.h"
 #include "platform/platform.h"
@@ -45,7 +46,6 @@ bool parse_size(const std::string& text, int& width, int& height) {
 
 int main(int argc, char** argv) {
   CLI::App cli{"player: a kiosk glTF player with screen-space ambient occlusion on OpenGL ES 3.1 compute"};
-  cli.require_subcommand(1);
 
   app::RenderOptions render;
   std::string size = "1024x768";
@@ -84,7 +84,49 @@ int main(int argc, char** argv) {
   hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
 
+  app::PlayOptions play;
+  std::string play_size = "1024x768";
+  auto* play_cmd = cli.add_subcommand("play", "Play a playlist (TOML) or scenes in a loop, kiosk style, until stopped (the default command)");
+  play_cmd->add_option("inputs", play.inputs, "One playlist (.toml), or scenes (.gltf, .glb, builtin:NAME); none: builtin:demo");
+  play_cmd->add_option("--content", play.content_root, "Folder the playlist's files must stay inside (default: the playlist's folder)");
+  play_cmd->add_option("--duration", play.duration_s, "Scenes named on the command line: seconds each")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  play_cmd->add_option("--period", play.period_s, "Scenes named on the command line: turntable seconds per turn")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  play_cmd->add_option("--platform", play.platform, "GL platform: " + platform::names_text())
+      ->check(CLI::IsMember(platform::names()))->capture_default_str();
+  play_cmd->add_option("--size", play_size, "Surface size WxH (headless platforms; a window's initial size)")->capture_default_str();
+  play_cmd->add_flag("--fullscreen", play.fullscreen, "Start the window fullscreen (F11 toggles)");
+  play_cmd->add_option("--frames", play.frames, "Stop after N frames (0: run until SIGTERM or SIGINT)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  play_cmd->add_option("--out", play.out_dir, "Write every frame as DIR/frame-NNNNNN.png");
+  play_cmd->add_option("--fps", play.fps,
+                       "Pace frames and the playlist clock at F per second (default: as fast as possible, the clock advancing 1/30 s a frame)")
+      ->check(CLI::NonNegativeNumber);
+  play_cmd->add_option("--board", play.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
+  play_cmd->add_option("--hal", play.hal, "Hardware backend: linux or mock; default linux with --board, mock without")
+      ->check(CLI::IsMember({"linux", "mock"}));
+  play_cmd->add_option("--buttons-script", play.buttons_script, "Mock buttons: lines of `t_ms BUTTON press|release`");
+  play_cmd->add_option("--status", play.status_file, "Status file (JSON, replaced atomically); default the board's status_file");
+  play_cmd->add_option("--log", play.log_file, "Write a line per frame: item, state, LED patterns, button actions");
+  SettingOptions play_settings;
+  play_settings.add_to(*play_cmd, play.settings);
+  cli.require_subcommand(0, 1);
+
   CLI11_PARSE(cli, argc, argv);
+
+  if (cli.get_subcommands().empty() || play_cmd->parsed()) {
+    if (!parse_size(play_size, play.width, play.height)) {
+      std::cerr << "error: --size: '" << play_size << "' is not WxH with positive integers (e.g. 1024x768)\n";
+      return 2;
+    }
+    std::string error;
+    if (!play_settings.apply(play.settings, error)) {
+      std::cerr << "error: " << error << "\n";
+      return 2;
+    }
+    return app::run_play(play, std::cout, std::cerr);
+  }
 
   if (hal_cmd->parsed()) return hal::run_hal_test(hal_test, std::cout);
 

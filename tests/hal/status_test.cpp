@@ -84,9 +84,13 @@ TEST(Status, ReportIsWrittenAtomicallyAsJson) {
   status.set_pattern(0, LedPattern::Heartbeat);
   StatusReport r;
   r.state = "playing";
-  r.current_item = "scenes/sponza.gltf";
+  r.item = "scenes/sponza.gltf";
   r.errors = {"camera: /dev/video0: cannot open camera: No such file or directory"};
-  r.last_check = CheckSummary{true, 0.91, "ok", milliseconds(1200)};
+  r.self_check = CheckSummary{true, 0.91, "ok", milliseconds(1200)};
+  r.frames = 1800;
+  r.fps = 29.5;
+  r.frame_ms_p50 = 33.3;
+  r.frame_ms_p99 = 41.0;
   std::string err;
   ASSERT_TRUE(status.write_report(r, &err)) << err;
   r.state = "paused";
@@ -95,10 +99,14 @@ TEST(Status, ReportIsWrittenAtomicallyAsJson) {
   std::ifstream in(file);
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["state"], "paused");
-  EXPECT_EQ(j["current_item"], "scenes/sponza.gltf");
+  EXPECT_EQ(j["item"], "scenes/sponza.gltf");
   EXPECT_EQ(j["errors"].size(), 1u);
-  EXPECT_EQ(j["last_check"]["passed"], true);
-  EXPECT_EQ(j["last_check"]["monotonic_ms"], 1200);
+  EXPECT_EQ(j["frames"], 1800);
+  EXPECT_DOUBLE_EQ(j["fps"].get<double>(), 29.5);
+  EXPECT_DOUBLE_EQ(j["frame_ms_p50"].get<double>(), 33.3);
+  EXPECT_DOUBLE_EQ(j["frame_ms_p99"].get<double>(), 41.0);
+  EXPECT_EQ(j["self_check"]["passed"], true);
+  EXPECT_EQ(j["self_check"]["monotonic_ms"], 1200);
   EXPECT_EQ(j["leds"]["status"], "heartbeat");
   // No temporaries left behind.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);

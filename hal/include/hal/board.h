@@ -23,10 +23,24 @@ struct GpioLine {
   std::string describe() const;  // "line GPIO17" or "gpiochip0:17", for error messages
 };
 
+// What a button does in the player. The board file names them; hal only checks the names.
+enum class Action : std::uint8_t { none, next, previous, pause, ao, output, restart, check };
+std::string_view to_string(Action a);
+bool parse_action(std::string_view text, Action& out);
+// "none, next, ..." for messages and docs.
+std::string action_names();
+
 struct ButtonConfig {
   std::string name;
   GpioLine line;
   ButtonTiming timing;
+  // Defaults by name: play -> pause (long press: restart), next -> next, previous -> previous,
+  // check -> check; any other name does nothing until the board file says `action`.
+  Action action = Action::none;
+  Action long_action = Action::none;
+  // The desktop key that stands in for this button in the window platform (SDL key names in lower
+  // case: "space", "n", "right"); defaults: play "space", next "n", previous "p", check "c".
+  std::string key;
 };
 
 struct LedConfig {
@@ -42,6 +56,7 @@ struct BoardConfig {
   std::vector<LedConfig> leds;
   std::optional<CameraConfig> camera;
   std::string status_file;
+  double self_check_interval_s = 0;  // the player's display self-check period; 0: only on demand
   std::string mock_button_script;  // relative paths are resolved against the board file's folder
   std::vector<std::string> mock_camera_images;
 };
@@ -53,6 +68,9 @@ public:
 };
 
 BoardConfig load_board(const std::string& path);
+// What a Pi with three buttons (play, next, check) and two LEDs (status, error) and a camera has;
+// used when no board file is given.
+BoardConfig builtin_mock_board();
 BoardConfig parse_board(const std::string& toml_text, const std::string& source_name);
 
 }  // namespace hal

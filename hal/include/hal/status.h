@@ -41,9 +41,12 @@ struct CheckSummary {
 // What the status file reports.
 struct StatusReport {
   std::string state = "starting";
-  std::string current_item;
-  std::vector<std::string> errors;
-  std::optional<CheckSummary> last_check;
+  std::string item;                  // what is on screen: the item's scene
+  std::uint64_t frames = 0;          // presented since start
+  double fps = 0.0;                  // over the last second or so
+  double frame_ms_p50 = 0.0, frame_ms_p99 = 0.0;  // frame-to-frame times over a recent window
+  std::vector<std::string> errors;   // the recent ones, newest last, each naming its file or device
+  std::optional<CheckSummary> self_check;  // the last display self-check
 };
 
 // Named LEDs driven by patterns from a timerfd, and the status file.

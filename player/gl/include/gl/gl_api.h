@@ -40,7 +40,7 @@ namespace gl {
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                        \
   X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                              \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                          \
-  X(PFNGLDRAWBUFFERSPROC, DrawBuffers) X(PFNGLREADBUFFERPROC, ReadBuffer)             \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers) X(PFNGLREADBUFFERPROC, ReadBuffer) X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer) \
   X(PFNGLREADPIXELSPROC, ReadPixels) X(PFNGLPIXELSTOREIPROC, PixelStorei)             \
   X(PFNGLCREATESHADERPROC, CreateShader) X(PFNGLSHADERSOURCEPROC, ShaderSource)       \
   X(PFNGLCOMPILESHADERPROC, CompileShader) X(PFNGLGETSHADERIVPROC, GetShaderiv)       \

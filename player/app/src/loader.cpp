@@ -1,0 +1,89 @@
+#include "loader.h"
+
+#include "scene/load.h"
+
+#include <sys/eventfd.h>
+
+#include <sstream>
+
+namespace app {
+
+Loader::Loader(playback::ParseOptions playlist_options)
+    : playlist_options_(std::move(playlist_options)), wake_(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {
+  thread_ = std::thread([this] { run(); });
+}
+
+Loader::~Loader() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  work_.notify_all();
+  thread_.join();
+}
+
+void Loader::load_scene(const std::string& spec) {
+  {
+    std::lock_guard lock(mutex_);
+    jobs_.push_back({Result::Kind::scene, spec, nullptr, nullptr, {}});
+  }
+  work_.notify_one();
+}
+
+void Loader::load_playlist(const std::string& path) {
+  {
+    std::lock_guard lock(mutex_);
+    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, {}});
+  }
+  work_.notify_one();
+}
+
+bool Loader::take(Result& out) {
+  uint64_t count = 0;
+  (void)!read(wake_.get(), &count, sizeof count);  // re-armed below while results remain
+  std::lock_guard lock(mutex_);
+  if (done_.empty()) return false;
+  out = std::move(done_.front());
+  done_.pop_front();
+  if (!done_.empty()) {
+    const uint64_t one = 1;
+    (void)!write(wake_.get(), &one, sizeof one);
+  }
+  return true;
+}
+
+std::size_t Loader::busy() const {
+  std::lock_guard lock(mutex_);
+  return jobs_.size() + running_;
+}
+
+void Loader::run() {
+  for (;;) {
+    Result job;
+    {
+      std::unique_lock lock(mutex_);
+      work_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+      if (stop_) return;
+      job = std::move(jobs_.front());
+      jobs_.pop_front();
+      ++running_;
+    }
+    if (job.kind == Result::Kind::scene) {
+      auto scene = std::make_shared<scene::Scene>();
+      std::ostringstream log;  // loader warnings are not errors; the item plays
+      if (scene::load(job.path, *scene, job.error, log)) job.scene = std::move(scene);
+    } else {
+      auto playlist = std::make_shared<playback::Playlist>();
+      if (playback::load_playlist(job.path, playlist_options_, *playlist, job.error)) job.playlist = std::move(playlist);
+    }
+    {
+      std::lock_guard lock(mutex_);
+      done_.push_back(std::move(job));
+      --running_;
+    }
+    const uint64_t one = 1;
+    (void)!write(wake_.get(), &one, sizeof one);
+  }
+}
+
+}  // namespace app

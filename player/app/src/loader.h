@@ -1,0 +1,54 @@
+#pragma once
+// Reads scenes and playlists on a thread of its own, so parsing, validating and decoding images
+// never holds up a frame. Results come back through a queue; fd() (an eventfd) wakes the loop.
+#include "playback/playlist.h"
+#include "scene/scene.h"
+#include "hal/unique_fd.h"
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+namespace app {
+
+class Loader {
+ public:
+  struct Result {
+    enum class Kind : std::uint8_t { scene, playlist } kind = Kind::scene;
+    std::string path;  // the scene spec or the playlist file, as requested
+    std::shared_ptr<const scene::Scene> scene;
+    std::shared_ptr<const playback::Playlist> playlist;
+    std::string error;  // empty on success
+  };
+
+  explicit Loader(playback::ParseOptions playlist_options);
+  ~Loader();
+  Loader(const Loader&) = delete;
+  Loader& operator=(const Loader&) = delete;
+
+  int fd() const { return wake_.get(); }
+  void load_scene(const std::string& spec);
+  void load_playlist(const std::string& path);
+  // Non-blocking: the oldest finished job, if any.
+  bool take(Result& out);
+  // Jobs queued or running.
+  std::size_t busy() const;
+
+ private:
+  void run();
+
+  playback::ParseOptions playlist_options_;
+  hal::UniqueFd wake_;
+  mutable std::mutex mutex_;
+  std::condition_variable work_;
+  std::deque<Result> jobs_, done_;
+  std::size_t running_ = 0;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace app

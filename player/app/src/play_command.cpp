@@ -1,0 +1,819 @@
+#include "app/play_command.h"
+
+#include "gl/caps.h"
+#include "gl/gl_api.h"
+#include "hal/board.h"
+#include "hal/devices.h"
+#include "hal/mock.h"
+#include "hal/self_check.h"
+#include "image_io.h"
+#include "loader.h"
+#include "playback/timeline.h"
+#include "render/renderer.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/inotify.h>
+#include <sys/signalfd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// The states the status file and LEDs report.
+enum class State { starting, loading, playing, paused, error };
+std::string_view name(State state) {
+  switch (state) {
+    case State::starting: return "starting";
+    case State::loading: return "loading";
+    case State::playing: return "playing";
+    case State::paused: return "paused";
+    case State::error: return "error";
+  }
+  return "?";
+}
+
+// LED patterns: the status LED tells the state, the error LED problems. Documented in board/README.md.
+struct LedPlan {
+  hal::LedPattern status, error;
+};
+LedPlan led_plan(State state, bool warning, bool check_failed) {
+  LedPlan plan{hal::LedPattern::Off, hal::LedPattern::Off};
+  switch (state) {
+    case State::starting: plan.status = hal::LedPattern::BlinkFast; break;
+    case State::loading: plan.status = hal::LedPattern::BlinkSlow; break;
+    case State::playing: plan.status = hal::LedPattern::Heartbeat; break;
+    case State::paused: plan.status = hal::LedPattern::On; break;
+    case State::error: plan.error = hal::LedPattern::On; break;
+  }
+  if (state != State::error) plan.error = check_failed ? hal::LedPattern::BlinkFast : warning ? hal::LedPattern::BlinkSlow : hal::LedPattern::Off;
+  return plan;
+}
+
+// A scene on its way to the GPU or there.
+struct Loaded {
+  std::unique_ptr<render::SceneGpu> gpu;  // what draws
+  scene::Bounds bounds;
+  // A new version uploading in slices; it replaces `gpu` once whole, so a reload never shows half a scene.
+  std::unique_ptr<render::SceneGpu> incoming;
+  scene::Bounds incoming_bounds;
+  std::string error;  // failed to load: the item is skipped
+  bool requested = false;
+};
+
+// Frame-to-frame times over a window, for the status file.
+class FrameStats {
+ public:
+  void add(double ms) {
+    window_[next_++ % window_.size()] = ms;
+    count_ = std::min(count_ + 1, window_.size());
+  }
+  double percentile(double p) const {
+    if (count_ == 0) return 0.0;
+    std::array<double, 256> sorted{};
+    std::copy_n(window_.begin(), count_, sorted.begin());
+    std::sort(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(count_));
+    return sorted[std::min(count_ - 1, static_cast<size_t>(p * static_cast<double>(count_)))];
+  }
+
+ private:
+  std::array<double, 256> window_{};
+  size_t next_ = 0, count_ = 0;
+};
+
+bool is_playlist(const std::string& path) { return fs::path(path).extension() == ".toml"; }
+
+class Player {
+ public:
+  Player(const PlayOptions& options, std::ostream& out, std::ostream& err) : options_(options), out_(out), err_(err) {}
+  int run();
+
+ private:
+  bool set_up_hal();
+  bool set_up_watch();
+  void watch_content();
+  void handle_loader();
+  void handle_signals(bool& stop);
+  void handle_inotify();
+  void handle_buttons(double now);
+  void handle_platform_events(bool& stop);
+  void act(hal::Action action, double now);
+  void request_scenes(const playback::Frame& frame);
+  void step_uploads();
+  void render_frame(const playback::Frame& frame);
+  void update_status(bool force);
+  void set_leds();
+  void report(const std::string& error);
+  bool scene_settled(int item) const;
+  void start_self_check(double now);
+  void draw_check_frame();
+  void service_camera(double now);
+  void apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now);
+  render::FrameSettings settings_for(int item) const;
+  double now_seconds() const;
+
+  const PlayOptions& options_;
+  std::ostream& out_;
+  std::ostream& err_;
+
+  std::unique_ptr<platform::Platform> platform_;
+  gl::Caps caps_;
+  render::Programs programs_;
+  render::ViewTargets targets_;
+  render::PresentTarget present_{};
+  gl::FrameTimer timer_;
+
+  std::string playlist_path_;  // empty: scenes from the command line
+  std::shared_ptr<const playback::Playlist> playlist_;
+  std::unique_ptr<playback::Timeline> timeline_;
+  std::unique_ptr<Loader> loader_;
+  std::map<std::string, Loaded> scenes_;
+  std::string shown_spec_;  // the scene the targets are configured for
+  int configured_item_ = -2;
+  std::uint64_t configured_sequence_ = 0;
+
+  // Button actions that change how a frame is drawn.
+  bool ao_override_ = false, ao_on_ = true;
+  int output_offset_ = 0;
+
+  // Clocks: without --fps a headless run advances 1/30 s a frame on a manual clock, so a run is
+  // reproducible; otherwise the monotonic clock.
+  bool manual_clock_ = false;
+  hal::ManualClock manual_{hal::Nanos{0}};
+  hal::MonotonicClock monotonic_;
+  const hal::Clock* hal_clock_ = &monotonic_;
+  Clock::time_point start_ = Clock::now();
+  double wall_start_ = wall_seconds();
+  long long frame_ = 0;
+
+  hal::BoardConfig board_;
+  hal::Devices devices_;
+  std::vector<hal::ButtonConfig> buttons_;  // actions per button index
+  std::optional<size_t> status_led_, error_led_;
+  hal::MockCamera* mock_camera_ = nullptr;
+
+  State state_ = State::starting;
+  std::vector<std::string> errors_;
+  std::optional<hal::CheckSummary> last_check_;
+  bool check_requested_ = false;
+  double next_check_ = 0.0;
+  FrameStats stats_;
+  double last_frame_s_ = -1.0;
+  double last_status_s_ = -1e9;
+  std::string last_status_text_;
+  std::ofstream log_;
+  std::string pending_actions_;  // for the log line of the frame they act on
+  std::array<bool, 256> long_fired_{};
+
+  hal::DisplayChecker checker_;
+  bool checking_ = false, camera_lost_ = false;
+  double check_started_ = 0.0;
+  std::uint32_t check_sequence_ = 0;
+  hal::FiducialLayout check_layout_;
+  hal::RgbImage check_image_, capture_;
+  gl::Texture check_texture_;
+  gl::Framebuffer check_fbo_;
+
+  render::View view_;
+  scene::Bounds shown_bounds_;
+  std::string gl_error_, last_status_error_;
+  int last_item_ = -1;
+
+  hal::UniqueFd signal_fd_, inotify_fd_;
+  std::map<int, std::string> watched_dirs_;  // watch descriptor -> folder
+};
+
+double Player::now_seconds() const {
+  if (manual_clock_) return std::chrono::duration<double>(manual_.now()).count();
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+void Player::report(const std::string& error) {
+  err_ << "warning: " << error << "\n";
+  if (std::find(errors_.begin(), errors_.end(), error) != errors_.end()) return;
+  errors_.push_back(error);
+  constexpr size_t kKeep = 16;  // the recent ones; the oldest go first
+  if (errors_.size() > kKeep) errors_.erase(errors_.begin());
+}
+
+bool Player::set_up_hal() {
+  hal::Backend backend = hal::Backend::Mock;
+  if (!options_.hal.empty()) {
+    if (!hal::parse_backend(options_.hal, backend)) {
+      err_ << "error: --hal: expected linux or mock, got '" << options_.hal << "'\n";
+      return false;
+    }
+  } else if (!options_.board_file.empty()) {
+    backend = hal::Backend::Linux;
+  }
+  try {
+    board_ = options_.board_file.empty() ? hal::builtin_mock_board() : hal::load_board(options_.board_file);
+    if (!options_.buttons_script.empty()) board_.mock_button_script = options_.buttons_script;
+    if (!options_.status_file.empty()) board_.status_file = options_.status_file;
+    if (backend == hal::Backend::Linux && !options_.buttons_script.empty()) {
+      err_ << "error: --buttons-script drives mock buttons; add --hal mock\n";
+      return false;
+    }
+    devices_ = hal::open_devices(board_, backend, *hal_clock_);
+  } catch (const hal::ConfigError& e) {
+    err_ << "error: " << e.what() << "\n";
+    return false;
+  }
+  buttons_ = board_.buttons;
+  for (const std::string& problem : devices_.problems) report(problem);
+  status_led_ = devices_.status->find_led("status");
+  error_led_ = devices_.status->find_led("error");
+  if (backend == hal::Backend::Mock) mock_camera_ = dynamic_cast<hal::MockCamera*>(devices_.camera.get());
+  if (board_.self_check_interval_s > 0.0) next_check_ = board_.self_check_interval_s;
+  return true;
+}
+
+bool Player::set_up_watch() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int signal : {SIGTERM, SIGINT, SIGHUP, SIGUSR1}) sigaddset(&signals, signal);
+  // Blocked in every thread (the loader thread inherits the mask), read through the signalfd.
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  signal_fd_.reset(signalfd(-1, &signals, SFD_NONBLOCK | SFD_CLOEXEC));
+  inotify_fd_.reset(inotify_init1(IN_NONBLOCK | IN_CLOEXEC));
+  if (!inotify_fd_) report("inotify: cannot watch the content for changes (" + std::string(std::strerror(errno)) + ")");
+  return static_cast<bool>(signal_fd_);
+}
+
+// Folders of the playlist and of every item's scene: a writer saves a dot-file and renames it into
+// place (MOVED_TO), or writes in place (CLOSE_WRITE); a removed file (DELETE) fails its next load.
+void Player::watch_content() {
+  if (!inotify_fd_) return;
+  std::set<std::string> folders;
+  if (!playlist_path_.empty()) folders.insert(fs::path(playlist_path_).parent_path().string());
+  for (const playback::Item& item : playlist_->items)
+    if (item.scene.rfind("builtin:", 0) != 0) folders.insert(fs::path(item.scene).parent_path().string());
+  for (const std::string& folder : folders) {
+    bool known = false;
+    for (const auto& [wd, dir] : watched_dirs_) known = known || dir == folder;
+    if (known) continue;
+    const int wd = inotify_add_watch(inotify_fd_.get(), folder.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE);
+    if (wd >= 0) watched_dirs_[wd] = folder;
+    else report(folder + ": cannot watch for changes (" + std::string(std::strerror(errno)) + ")");
+  }
+}
+
+render::FrameSettings Player::settings_for(int item) const {
+  render::FrameSettings settings = options_.settings;
+  settings.width = platform_->size().width;
+  settings.height = platform_->size().height;
+  if (item >= 0 && item < static_cast<int>(playlist_->items.size())) {
+    const playback::Item& entry = playlist_->items[static_cast<size_t>(item)];
+    std::string ignored;  // validated when the playlist was read
+    for (const playback::Setting& setting : entry.settings) render::apply_setting(settings, setting.key, setting.value, ignored);
+    if (entry.has_background) settings.background = entry.background;
+  }
+  if (ao_override_) settings.ao = ao_on_;
+  constexpr int kOutputs = static_cast<int>(std::size(render::kOutputNames));
+  settings.output = static_cast<render::Output>((static_cast<int>(settings.output) + output_offset_) % kOutputs);
+  return settings;
+}
+
+void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now) {
+  playlist_ = std::move(playlist);
+  if (timeline_) timeline_->replace(*playlist_, now);
+  else timeline_ = std::make_unique<playback::Timeline>(*playlist_, now, wall_start_ + now);
+  configured_item_ = -2;
+  for (size_t i = 0; i < playlist_->items.size(); ++i) {
+    auto found = scenes_.find(playlist_->items[i].scene);
+    if (found != scenes_.end() && !found->second.error.empty()) timeline_->set_playable(static_cast<int>(i), false);
+  }
+  watch_content();
+}
+
+void Player::request_scenes(const playback::Frame& frame) {
+  for (int item : {frame.item, frame.next_item}) {
+    if (item < 0) continue;
+    const std::string& spec = playlist_->items[static_cast<size_t>(item)].scene;
+    Loaded& loaded = scenes_[spec];
+    if (!loaded.requested) {
+      loaded.requested = true;
+      loader_->load_scene(spec);
+    }
+  }
+  // Scenes no item needs any more (after a playlist change) are dropped with their GPU data.
+  for (auto it = scenes_.begin(); it != scenes_.end();) {
+    bool used = false;
+    for (const playback::Item& item : playlist_->items) used = used || item.scene == it->first;
+    it = used ? std::next(it) : scenes_.erase(it);
+  }
+}
+
+void Player::handle_loader() {
+  Loader::Result result;
+  while (loader_->take(result)) {
+    if (result.kind == Loader::Result::Kind::playlist) {
+      if (!result.error.empty()) {
+        report(result.error + " (the last good playlist keeps playing)");
+        continue;
+      }
+      // A changed playlist may name changed scenes: load those again too.
+      apply_playlist(result.playlist, now_seconds());
+      continue;
+    }
+    auto found = scenes_.find(result.path);
+    if (found == scenes_.end()) continue;  // no longer in the playlist
+    Loaded& loaded = found->second;
+    if (!result.error.empty()) {
+      report(result.error);
+      if (!loaded.gpu) {  // never loaded: skip its items; a reload that fails keeps the old content
+        loaded.error = result.error;
+        for (size_t i = 0; i < playlist_->items.size(); ++i)
+          if (playlist_->items[i].scene == result.path) timeline_->set_playable(static_cast<int>(i), false);
+      }
+      continue;
+    }
+    loaded.error.clear();
+    for (size_t i = 0; i < playlist_->items.size(); ++i)
+      if (playlist_->items[i].scene == result.path) timeline_->set_playable(static_cast<int>(i), true);
+    loaded.incoming = std::make_unique<render::SceneGpu>();
+    loaded.incoming->begin(result.scene, caps_);
+    loaded.incoming_bounds = result.scene->bounds;
+  }
+}
+
+// Uploads in slices: a budget per frame keeps an item change or a reload from showing as a hitch.
+void Player::step_uploads() {
+  constexpr size_t kBudget = 8u << 20;
+  size_t left = kBudget;
+  for (auto& [spec, loaded] : scenes_) {
+    if (!loaded.incoming || left == 0) continue;
+    const size_t before = loaded.incoming->bytes();
+    const bool done = loaded.incoming->step(left);
+    left -= std::min(left, std::max<size_t>(loaded.incoming->bytes() - before, 1));
+    if (!done) continue;
+    if (loaded.incoming->failed()) {
+      report(spec + ": " + loaded.incoming->error());
+      loaded.incoming.reset();
+      continue;
+    }
+    loaded.gpu = std::move(loaded.incoming);
+    loaded.bounds = loaded.incoming_bounds;
+    if (spec == shown_spec_) configured_item_ = -2;  // the radius may have changed: configure again
+  }
+}
+
+void Player::handle_signals(bool& stop) {
+  signalfd_siginfo info{};
+  while (read(signal_fd_.get(), &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
+    switch (info.ssi_signo) {
+      case SIGTERM:
+      case SIGINT: stop = true; break;
+      case SIGHUP:  // reload everything
+        if (!playlist_path_.empty()) loader_->load_playlist(playlist_path_);
+        for (auto& [spec, loaded] : scenes_) loader_->load_scene(spec);
+        break;
+      case SIGUSR1: check_requested_ = true; break;
+      default: break;
+    }
+  }
+}
+
+void Player::handle_inotify() {
+  alignas(inotify_event) char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(inotify_fd_.get(), buffer, sizeof buffer);
+    if (n <= 0) return;
+    for (ssize_t at = 0; at < n;) {
+      const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
+      at += static_cast<ssize_t>(sizeof(inotify_event) + event->len);
+      if (event->len == 0 || event->name[0] == '.') continue;  // dot-files are writers' temporaries
+      const auto folder = watched_dirs_.find(event->wd);
+      if (folder == watched_dirs_.end()) continue;
+      const std::string path = (fs::path(folder->second) / event->name).string();
+      if (path == playlist_path_) {
+        if (event->mask & IN_DELETE) report(path + ": the playlist was deleted (the last good one keeps playing)");
+        else loader_->load_playlist(path);
+        continue;
+      }
+      auto found = scenes_.find(path);
+      if (found != scenes_.end()) loader_->load_scene(path);  // a deleted scene fails to load and is reported
+    }
+  }
+}
+
+void Player::act(hal::Action action, double now) {
+  if (!pending_actions_.empty()) pending_actions_ += ",";
+  pending_actions_ += hal::to_string(action);
+  switch (action) {
+    case hal::Action::none: break;
+    case hal::Action::next: timeline_->next(now); break;
+    case hal::Action::previous: timeline_->previous(now); break;
+    case hal::Action::restart: timeline_->restart(now); break;
+    case hal::Action::pause:
+      if (timeline_->paused()) timeline_->resume(now);
+      else timeline_->pause(now);
+      break;
+    case hal::Action::ao:
+      ao_on_ = ao_override_ ? !ao_on_ : !options_.settings.ao;
+      ao_override_ = true;
+      configured_item_ = -2;
+      break;
+    case hal::Action::output:
+      ++output_offset_;
+      configured_item_ = -2;
+      break;
+    case hal::Action::check: check_requested_ = true; break;
+  }
+}
+
+void Player::handle_buttons(double now) {
+  std::array<hal::ButtonEvent, 32> events;
+  for (;;) {
+    const size_t n = devices_.buttons->read(events);
+    for (size_t i = 0; i < n; ++i) {
+      const hal::ButtonEvent& event = events[i];
+      if (event.button >= buttons_.size()) continue;
+      const hal::ButtonConfig& button = buttons_[event.button];
+      // A button with a long-press action acts on release of a short press, so a long press does
+      // not first do the short action; one without acts at once on press (and on each repeat).
+      const bool has_long = button.long_action != hal::Action::none;
+      switch (event.action) {
+        case hal::ButtonAction::Press:
+          if (!has_long) act(button.action, now);
+          long_fired_[event.button] = false;
+          break;
+        case hal::ButtonAction::Repeat:
+          if (!has_long) act(button.action, now);
+          break;
+        case hal::ButtonAction::LongPress:
+          if (has_long) {
+            act(button.long_action, now);
+            long_fired_[event.button] = true;
+          }
+          break;
+        case hal::ButtonAction::Release:
+          if (has_long && !long_fired_[event.button]) act(button.action, now);
+          break;
+      }
+    }
+    if (n < events.size()) break;
+  }
+  if (!devices_.buttons->last_error().empty()) report(devices_.buttons->last_error());
+}
+
+void Player::handle_platform_events(bool& stop) {
+  std::array<platform::Event, 16> events;
+  const size_t n = platform_->drain_events(events);
+  for (size_t i = 0; i < n; ++i) {
+    const platform::Event& event = events[i];
+    switch (event.type) {
+      case platform::EventType::close_requested: stop = true; break;
+      case platform::EventType::resized: configured_item_ = -2; break;
+      case platform::EventType::key_press:
+      case platform::EventType::key_release:
+        if (auto* mock = dynamic_cast<hal::MockButtons*>(devices_.buttons.get()))
+          for (size_t b = 0; b < buttons_.size(); ++b)
+            if (!buttons_[b].key.empty() && buttons_[b].key == event.key)
+              mock->inject(b, event.type == platform::EventType::key_press);
+        break;
+    }
+  }
+}
+
+
+// The display self-check: one frame with AprilTag markers in the corners is held on screen until
+// the camera delivers a capture of it (or a timeout), then compared. The playlist clock runs on.
+void Player::start_self_check(double now) {
+  check_requested_ = false;
+  if (!devices_.camera) {
+    report("self-check: the board has no camera");
+    return;
+  }
+  const int w = platform_->size().width, h = platform_->size().height;
+  const std::vector<uint8_t> rgba = render::read_presented(present_, w, h);
+  check_image_.resize(w, h);
+  for (size_t i = 0, n = static_cast<size_t>(w) * static_cast<size_t>(h); i < n; ++i)
+    std::copy_n(&rgba[i * 4], 3, &check_image_.pixels[i * 3]);
+  check_layout_ = hal::FiducialLayout::for_display(w, h, ++check_sequence_);
+  hal::draw_fiducials(check_image_, check_layout_);
+  // Uploaded in the framebuffer's own encoding, so the blit copies the bytes as they are.
+  std::vector<uint8_t> flipped(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 255);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      std::copy_n(check_image_.at(x, h - 1 - y), 3, &flipped[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 4]);
+  check_texture_ = gl::make_texture();
+  gl::api.BindTexture(GL_TEXTURE_2D, check_texture_.id());
+  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, present_.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h);
+  gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+  check_fbo_ = gl::make_framebuffer();
+  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, check_fbo_.id());
+  gl::api.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, check_texture_.id(), 0);
+  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  check_started_ = now;
+  checking_ = true;
+  if (mock_camera_ != nullptr) mock_camera_->show(check_image_);
+}
+
+void Player::draw_check_frame() {
+  const int w = platform_->size().width, h = platform_->size().height;
+  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, check_fbo_.id());
+  gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, present_.framebuffer);
+  gl::api.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Player::service_camera(double now) {
+  if (!devices_.camera) return;
+  devices_.camera->service();
+  const bool lost = devices_.camera->state() != hal::CameraState::Streaming;
+  if (lost && !camera_lost_) report("camera: " + devices_.camera->last_error());
+  camera_lost_ = lost;
+  if (!checking_) {
+    devices_.camera->read_frame(capture_);  // keep the queue drained between checks
+    return;
+  }
+  constexpr double kCheckTimeout = 3.0;
+  if (devices_.camera->read_frame(capture_)) {
+    const hal::SelfCheckResult result = checker_.check(check_image_, check_layout_, capture_);
+    last_check_ = hal::CheckSummary{result.passed, result.score, result.reason, hal_clock_->now()};
+    if (!result.passed) report("self-check failed: " + result.reason);
+    checking_ = false;
+  } else if (now - check_started_ > kCheckTimeout) {
+    last_check_ = hal::CheckSummary{false, 0.0, "no camera frame within 3 s", hal_clock_->now()};
+    report("self-check failed: no camera frame within 3 s");
+    checking_ = false;
+  }
+  if (!checking_) {
+    if (mock_camera_ != nullptr) mock_camera_->show(check_image_);  // the synthetic camera films the last frame shown
+    update_status(true);
+  }
+}
+
+void Player::render_frame(const playback::Frame& frame) {
+  State state = State::playing;
+  const render::SceneGpu* gpu = nullptr;
+  if (frame.item < 0) {
+    state = State::error;
+  } else {
+    const std::string& spec = playlist_->items[static_cast<size_t>(frame.item)].scene;
+    auto found = scenes_.find(spec);
+    if (found != scenes_.end() && found->second.gpu && found->second.gpu->ready()) {
+      gpu = found->second.gpu.get();
+      const bool new_item = frame.item != configured_item_ || frame.sequence != configured_sequence_ || spec != shown_spec_;
+      if (new_item || frame.cut) {
+        std::string error;
+        if (!targets_.configure(programs_, caps_, settings_for(frame.item), gpu->radius(), error)) {
+          report(spec + ": " + error);
+          gpu = nullptr;
+        }
+        configured_item_ = frame.item;
+        configured_sequence_ = frame.sequence;
+        shown_spec_ = spec;
+      }
+      if (gpu != nullptr) {
+        scene::Framing framing;
+        framing.azimuth_deg = frame.camera.azimuth_deg;
+        framing.elevation_deg = frame.camera.elevation_deg;
+        framing.distance = frame.camera.distance;
+        framing.fov_y_deg = frame.camera.fov_deg;
+        shown_bounds_ = found->second.bounds;
+        view_ = render::view_of(scene::frame(shown_bounds_, framing, targets_.settings().width, targets_.settings().height));
+      }
+    } else {
+      state = State::loading;
+    }
+  }
+  if (timeline_->paused() && state == State::playing) state = State::paused;
+  if (state != state_) {
+    state_ = state;
+    set_leds();
+    update_status(true);
+  }
+
+  timer_.begin_frame();
+  if (checking_) {
+    draw_check_frame();
+  } else if (gpu != nullptr) {
+    const render::Frame pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
+    render::render_view(pass, present_, frame.fade);
+  } else {
+    // Nothing to draw yet (loading) or nothing playable: the background colour.
+    gl::api.BindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer);
+    gl::api.Viewport(0, 0, platform_->size().width, platform_->size().height);
+    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    gl::api.ClearBufferfv(GL_COLOR, 0, black);
+  }
+  timer_.end_frame();
+  if (!gl_error_.empty()) {
+    report("GL: " + gl_error_);
+    gl_error_.clear();
+  }
+}
+
+bool Player::scene_settled(int item) const {
+  const auto found = scenes_.find(playlist_->items[static_cast<size_t>(item)].scene);
+  if (found == scenes_.end()) return false;
+  const Loaded& loaded = found->second;
+  return !loaded.error.empty() || (loaded.gpu && loaded.gpu->ready() && !loaded.incoming);
+}
+
+void Player::set_leds() {
+  const LedPlan plan = led_plan(state_, camera_lost_ || !errors_.empty(), last_check_ && !last_check_->passed);
+  if (status_led_ && devices_.status->pattern(*status_led_) != plan.status) devices_.status->set_pattern(*status_led_, plan.status);
+  if (error_led_ && devices_.status->pattern(*error_led_) != plan.error) devices_.status->set_pattern(*error_led_, plan.error);
+}
+
+void Player::update_status(bool force) {
+  const double now = now_seconds();
+  constexpr double kPeriod = 2.0;  // often enough for a monitor, rarely enough for an SD card
+  if (!force && now - last_status_s_ < kPeriod) return;
+  last_status_s_ = now;
+  set_leds();
+  hal::StatusReport report;
+  report.state = std::string(name(state_));
+  if (timeline_ && last_item_ >= 0) report.item = playlist_->items[static_cast<size_t>(last_item_)].scene;
+  report.frames = static_cast<std::uint64_t>(frame_);
+  report.frame_ms_p50 = stats_.percentile(0.5);
+  report.frame_ms_p99 = stats_.percentile(0.99);
+  report.fps = report.frame_ms_p50 > 0.0 ? 1000.0 / report.frame_ms_p50 : 0.0;
+  report.errors = errors_;
+  report.self_check = last_check_;
+  std::string error;
+  if (!devices_.status->write_report(report, &error) && error != last_status_error_) {
+    last_status_error_ = error;
+    err_ << "warning: " << error << "\n";
+  }
+}
+
+int Player::run() {
+  manual_clock_ = options_.fps <= 0.0 && options_.platform != "window";
+  if (manual_clock_) hal_clock_ = &manual_;
+  if (!set_up_hal() || !set_up_watch()) return 1;
+  set_leds();
+
+  // What to play.
+  playback::ParseOptions parse_options;
+  parse_options.content_root = options_.content_root;
+  parse_options.validate_setting = render::validate_setting;
+  loader_ = std::make_unique<Loader>(parse_options);
+  std::vector<std::string> inputs = options_.inputs;
+  if (inputs.empty()) inputs.push_back("builtin:demo");
+  if (inputs.size() == 1 && is_playlist(inputs.front())) {
+    playlist_path_ = fs::absolute(inputs.front()).lexically_normal().string();
+    auto playlist = std::make_shared<playback::Playlist>();
+    std::string error;
+    if (!playback::load_playlist(playlist_path_, parse_options, *playlist, error)) {
+      err_ << "error: " << error << "\n";
+      return 1;
+    }
+    playlist_ = std::move(playlist);
+  } else {
+    for (const std::string& input : inputs)
+      if (is_playlist(input)) {
+        err_ << "error: " << input << ": a playlist plays on its own (give one playlist, or scenes)\n";
+        return 1;
+      }
+    playlist_ = std::make_shared<playback::Playlist>(playback::playlist_from_scenes(inputs, options_.duration_s, options_.period_s));
+  }
+
+  platform::Options platform_options;
+  platform_options.name = options_.platform;
+  platform_options.size = {options_.width, options_.height};
+  platform_options.fullscreen = options_.fullscreen;
+  std::string error;
+  platform_ = gl::open_context(platform_options, error);
+  if (!platform_) {
+    err_ << "error: " << error << "\n";
+    return 2;
+  }
+  caps_ = gl::query_caps();
+  gl::install_debug_log(caps_, false);
+  present_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
+  // Every SSAO variant now, so a playlist item with another estimator does not compile mid-play.
+  if (!programs_.build(caps_, error)) {
+    err_ << "error: " << error << "\n";
+    return 2;
+  }
+  for (ssao::Estimator estimator : ssao::kEstimators)
+    if (!programs_.ssao(estimator, error)) {
+      err_ << "error: " << error << "\n";
+      return 2;
+    }
+  timer_.create(caps_.timer_query, false);
+  out_ << "platform: " << platform_->name() << " (" << platform_->description() << "; " << caps_.renderer << ")\n";
+  out_ << "playing " << (playlist_path_.empty() ? std::string("the command line's scenes") : playlist_path_) << ": "
+       << playlist_->items.size() << " item(s)\n" << std::flush;
+  if (!options_.log_file.empty()) log_.open(options_.log_file);
+  if (!options_.out_dir.empty()) fs::create_directories(options_.out_dir);
+
+  timeline_ = std::make_unique<playback::Timeline>(*playlist_, 0.0, wall_start_);
+  watch_content();
+  update_status(true);
+
+  bool stop = false;
+  const double frame_interval = options_.fps > 0.0 ? 1.0 / options_.fps : 1.0 / 30.0;
+  double next_frame = 0.0;
+  std::vector<pollfd> fds;
+  while (!stop) {
+    // One poll over every source; it sleeps only until the next frame is due.
+    fds.clear();
+    for (int fd : {signal_fd_.get(), inotify_fd_.get(), loader_->fd(), platform_->event_fd(), devices_.buttons->fd(),
+                   devices_.status->fd(), devices_.camera ? devices_.camera->fd() : -1})
+      if (fd >= 0) fds.push_back({fd, POLLIN, 0});
+    int timeout_ms = 0;
+    if (!manual_clock_ && options_.fps > 0.0)
+      timeout_ms = std::max(0, static_cast<int>((next_frame - now_seconds()) * 1000.0));
+    poll(fds.data(), fds.size(), timeout_ms);
+
+    handle_signals(stop);
+    if (stop) break;
+    handle_inotify();
+    handle_loader();
+    handle_platform_events(stop);
+    const double now = now_seconds();
+    handle_buttons(now);
+    devices_.status->update();
+    if (options_.fps > 0.0 && now < next_frame) {
+      service_camera(now);
+      continue;
+    }
+    next_frame = std::max(next_frame + frame_interval, now);
+
+    if (check_requested_ && !checking_) start_self_check(now);
+    if (board_.self_check_interval_s > 0.0 && now >= next_check_ && !checking_) {
+      next_check_ = now + board_.self_check_interval_s;
+      start_self_check(now);
+    }
+    playback::Frame frame = timeline_->at(now, wall_start_ + now);
+    request_scenes(frame);
+    step_uploads();
+    if (manual_clock_) {
+      // A reproducible run waits for the item's scene instead of showing frames of "loading".
+      while (frame.item >= 0 && !scene_settled(frame.item)) {
+        pollfd wake{loader_->fd(), POLLIN, 0};
+        poll(&wake, 1, 100);
+        handle_loader();
+        frame = timeline_->at(now, wall_start_ + now);
+        request_scenes(frame);
+        step_uploads();
+      }
+    }
+    last_item_ = frame.item;
+    render_frame(frame);
+    if (!options_.out_dir.empty()) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame-%06lld.png", frame_);
+      const std::vector<uint8_t> rgba = render::read_presented(present_, platform_->size().width, platform_->size().height);
+      if (!write_png((fs::path(options_.out_dir) / name).string(), platform_->size().width, platform_->size().height, rgba, error)) {
+        err_ << "error: " << error << "\n";
+        return 1;
+      }
+    }
+    if (!platform_->present()) stop = true;
+    service_camera(now);
+    if (log_.is_open()) {
+      log_ << frame_ << " t=" << now << " item=" << frame.item << " state=" << name(state_);
+      for (size_t led = 0; led < devices_.status->led_count(); ++led)
+        log_ << ' ' << devices_.status->led_name(led) << '=' << hal::to_string(devices_.status->pattern(led));
+      log_ << " actions=" << (pending_actions_.empty() ? "-" : pending_actions_) << "\n";
+    }
+    pending_actions_.clear();
+
+    const double frame_s = manual_clock_ ? now : std::chrono::duration<double>(Clock::now() - start_).count();
+    if (last_frame_s_ >= 0.0) stats_.add((frame_s - last_frame_s_) * 1000.0);
+    last_frame_s_ = frame_s;
+    ++frame_;
+    update_status(false);
+    if (manual_clock_) manual_.advance(std::chrono::duration_cast<hal::Nanos>(std::chrono::duration<double>(frame_interval)));
+    if (options_.frames > 0 && frame_ >= options_.frames) break;
+    if (frame.finished) break;
+  }
+  state_ = state_ == State::error ? State::error : State::playing;
+  update_status(true);
+  out_ << "played " << frame_ << " frames, " << errors_.size() << " error(s)\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
+  Player player(options, out, err);
+  return player.run();
+}
+
+}  // namespace app

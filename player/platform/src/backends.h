@@ -5,4 +5,5 @@
 namespace platform {
 std::unique_ptr<Platform> create_egl(const Options& options, std::string& error);
 std::unique_ptr<Platform> create_osmesa(const Options& options, std::string& error);
+std::unique_ptr<Platform> create_window(const Options& options, std::string& error);
 }  // namespace platform

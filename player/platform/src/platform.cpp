@@ -6,6 +6,8 @@ namespace {
 constexpr Entry kRegistry[] = {
     {"egl", "headless EGL: EGL_EXT_platform_device for GPUs, else Mesa's surfaceless platform", true, create_egl},
     {"osmesa", "Mesa's OSMesa, desktop GL 4.5 core running the same ES 3.1 shaders", true, create_osmesa},
+    {"window", "a desktop window (SDL2, X11 or Wayland) with OpenGL ES 3.1 on EGL; F11 toggles fullscreen", false,
+     create_window},
 };
 
 }  // namespace

@@ -1,0 +1,194 @@
+// The desktop window platform, run under Xvfb (ctest's gl.window_under_xvfb): it renders the same
+// frame as headless EGL, drains events without blocking and answers a resize with a `resized` event.
+// The Window* tests need a display; gl_tests' discovered entries leave them out.
+#include "harness.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+namespace {
+
+using test::Harness;
+
+// Both platforms run the same shaders on the same driver (Mesa's llvmpipe under Xvfb), so the frame
+// is the same up to the last step: the window's framebuffer may lack sRGB where the EGL pbuffer has
+// it (or the other way round), and then one side encodes linear colour in the shader and the other
+// in the framebuffer. Each rounds to 8 bits its own way, so a channel may differ by 1/255, in any
+// share of the pixels. Where both encode the same way nothing may differ.
+constexpr int kMaxChannelDifference = 1;
+
+render::FrameSettings settings_for(int width, int height) {
+  render::FrameSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.check_errors = true;
+  return settings;
+}
+
+bool has_display() { return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr; }
+
+#define SKIP_WITHOUT_DISPLAY() \
+  if (!has_display()) GTEST_SKIP() << "no DISPLAY: ctest runs the Window tests under xvfb-run (gl.window_under_xvfb)"
+
+void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba) {
+  auto output = OIIO::ImageOutput::create(path);
+  if (output && output->open(path, OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8))) {
+    output->write_image(OIIO::TypeDesc::UINT8, rgba.data());
+    output->close();
+  }
+}
+
+// Drains up to `rounds` times, a few milliseconds apart, until `wanted` accepts an event.
+template <typename Wanted>
+bool drain_until(platform::Platform& platform, int rounds, Wanted wanted) {
+  platform::Event events[8];
+  for (int round = 0; round < rounds; ++round) {
+    const std::size_t count = platform.drain_events(events);
+    for (std::size_t i = 0; i < count; ++i)
+      if (wanted(events[i])) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+TEST(Window, RendersTheFrameHeadlessEglRenders) {
+  SKIP_WITHOUT_DISPLAY();
+  const render::FrameSettings settings = settings_for(160, 120);
+  // One context at a time on this thread: the window's frame is read and the window closed before
+  // the EGL context is made.
+  std::vector<uint8_t> shown;
+  bool window_srgb = false;
+  std::string window_renderer;
+  {
+    Harness window;
+    ASSERT_TRUE(window.start("window", "builtin:demo", settings));
+    ASSERT_EQ(window.platform->size(), (platform::Size{160, 120}));
+    ASSERT_EQ(window.platform->framebuffer(), 0u);
+    // Read before present(): after a swap the back buffer's contents are undefined.
+    shown = render::read_presented(window.target(), settings.width, settings.height);
+    EXPECT_EQ(window.renderer.gl_error(), "");
+    EXPECT_TRUE(window.platform->present());
+    window_srgb = window.platform->srgb_framebuffer();
+    window_renderer = window.caps.renderer;
+    std::cout << "window: " << window.platform->description() << "; " << window_renderer << "\n";
+  }
+  Harness egl;
+  ASSERT_TRUE(egl.start("egl", "builtin:demo", settings));
+  const std::vector<uint8_t> expected = render::read_presented(egl.target(), settings.width, settings.height);
+  std::cout << "egl: " << egl.platform->description() << "; " << egl.caps.renderer << "\n";
+  if (egl.caps.renderer != window_renderer)
+    GTEST_SKIP() << "the window runs on " << window_renderer << " and headless EGL on " << egl.caps.renderer
+                 << ": frames from two drivers are not compared";
+  ASSERT_EQ(shown.size(), expected.size());
+
+  std::vector<uint8_t> diff(shown.size(), 255);
+  size_t differing = 0;
+  int worst = 0;
+  for (size_t p = 0; p < shown.size(); p += 4) {
+    int pixel_worst = 0;
+    for (size_t c = 0; c < 4; ++c)
+      pixel_worst = std::max(pixel_worst, std::abs(int(shown[p + c]) - int(expected[p + c])));
+    worst = std::max(worst, pixel_worst);
+    differing += pixel_worst > 0 ? 1 : 0;
+    diff[p] = static_cast<uint8_t>(std::min(255, pixel_worst * 64));
+    diff[p + 1] = diff[p + 2] = 0;
+  }
+  const bool same_encoding = window_srgb == egl.platform->srgb_framebuffer();
+  const size_t pixels = shown.size() / 4;
+  std::cout << "window sRGB framebuffer: " << window_srgb << ", egl: " << egl.platform->srgb_framebuffer()
+            << "; max difference " << worst << "/255 in " << differing << " of " << pixels << " pixels\n";
+  const int allowed = same_encoding ? 0 : kMaxChannelDifference;
+  if (worst > allowed) {
+    const std::string base = std::string(PLAYER_TEST_OUTPUT_DIR) + "/window_demo";
+    write_png(base + ".actual.png", settings.width, settings.height, shown);
+    write_png(base + ".expected.png", settings.width, settings.height, expected);
+    write_png(base + ".diff.png", settings.width, settings.height, diff);
+    ADD_FAILURE() << "the window's frame differs from headless EGL's by up to " << worst << "/255 (allowed " << allowed
+                  << ") in " << differing << " of " << pixels << " pixels; see " << base
+                  << ".actual.png, .expected.png and .diff.png";
+  }
+}
+
+TEST(Window, EventsDrainWithoutBlocking) {
+  SKIP_WITHOUT_DISPLAY();
+  Harness h;
+  std::string error;
+  ASSERT_TRUE(h.open("window", settings_for(160, 120), error)) << error;
+  platform::Event events[4];
+  // Whatever the window system sent at creation (focus, exposure) is converted or dropped; after that
+  // an idle window has nothing, and asking must return at once, again and again.
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < 100; ++i) (void)h.platform->drain_events(events);
+  EXPECT_EQ(h.platform->drain_events(events), 0u);
+  // Generous: a blocking drain would wait for input that never comes under Xvfb, far longer than this.
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+  EXPECT_EQ(h.platform->drain_events({}), 0u);
+  EXPECT_TRUE(h.platform->present());
+}
+
+TEST(Window, AResizeRequestArrivesAsAResizedEvent) {
+  SKIP_WITHOUT_DISPLAY();
+  Harness h;
+  ASSERT_TRUE(h.start("window", "builtin:demo", settings_for(160, 120)));
+  platform::Event events[8];
+  while (h.platform->drain_events(events) > 0) {
+  }
+  // Xvfb has no window manager, so the server applies the size as asked.
+  const platform::Size wanted{200, 150};
+  std::string error;
+  ASSERT_TRUE(h.platform->resize(wanted, error)) << error;
+  // No room: whatever arrives stays queued for the next call.
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(h.platform->drain_events({}), 0u);
+  EXPECT_TRUE(drain_until(*h.platform, 200, [&](const platform::Event& event) {
+    return event.type == platform::EventType::resized && event.size == wanted;
+  })) << "no resized event for 200x150";
+  EXPECT_EQ(h.platform->size(), wanted);
+  // The new size draws: a frame at 200x150 renders into the window without GL errors.
+  const render::FrameSettings settings = settings_for(wanted.width, wanted.height);
+  ASSERT_TRUE(h.renderer.configure(settings, error)) << error;
+  h.renderer.render(scene::frame(h.scene.bounds, {}, wanted.width, wanted.height));
+  const std::vector<uint8_t> frame = render::read_presented(h.target(), wanted.width, wanted.height);
+  EXPECT_EQ(h.renderer.gl_error(), "");
+  size_t lit = 0;
+  for (size_t p = 0; p < frame.size(); p += 4) lit += frame[p + 1] > 8 ? 1 : 0;
+  EXPECT_GT(lit, frame.size() / 4 / 10) << "the demo covers part of the resized window";
+  EXPECT_TRUE(h.platform->present());
+}
+
+TEST(Window, PresentSucceedsFrameAfterFrameWhileTheWindowIsOpen) {
+  SKIP_WITHOUT_DISPLAY();
+  Harness h;
+  ASSERT_TRUE(h.start("window", "builtin:demo", settings_for(160, 120)));
+  platform::Event events[8];
+  for (int frame = 0; frame < 10; ++frame) {
+    (void)h.platform->drain_events(events);
+    h.renderer.render(h.camera);
+    ASSERT_TRUE(h.platform->present()) << "frame " << frame;
+  }
+  EXPECT_EQ(h.renderer.gl_error(), "");
+  EXPECT_GE(h.platform->event_fd(), 0) << "an X11 window has the connection's fd";
+}
+
+// Runs everywhere (not a Window* test): without a display the platform says so, without crashing.
+TEST(NoDisplay, TheWindowPlatformSaysWhyInOneLine) {
+  std::vector<std::pair<const char*, std::string>> saved;
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER"}) {
+    if (const char* value = std::getenv(name)) saved.emplace_back(name, value);
+    unsetenv(name);
+  }
+  platform::Options options;
+  options.name = "window";
+  options.size = {64, 64};
+  std::string error;
+  const auto platform = gl::open_context(options, error);
+  for (const auto& [name, value] : saved) setenv(name, value.c_str(), 1);
+  EXPECT_EQ(platform, nullptr);
+  EXPECT_EQ(error,
+            "window: no display (DISPLAY is not set; the window platform needs X11 or Wayland, use --platform egl for "
+            "headless)");
+}
+
+}  // namespace

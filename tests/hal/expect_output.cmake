@@ -3,21 +3,31 @@
 # success, so a broken command could pass.
 #
 #   cmake -DCOMMAND=prog|arg|... -DEXPECT_RC=N [-DEXPECT_FIRST=line] [-DEXPECT_LAST=line]
-#         [-DEXPECT_LINES=text|text|...] [-DEXPECT_FILE=path] -P expect_output.cmake
+#         [-DEXPECT_LINES=text|text|...] [-DEXPECT_FILE=path] [-DSETUP=script.cmake]
+#         [-DLOG=file -DEXPECT_LOG=regex|...] [-DSTATUS=file -DEXPECT_STATUS=key=regex|...]
+#         -P expect_output.cmake
 #
 # '|' separates arguments and expectations. EXPECT_FIRST and EXPECT_LAST are whole lines; each
-# EXPECT_LINES entry is literal text that some line must contain. EXPECT_FILE is removed before the
-# run and must exist after it. stdout and stderr are checked together.
+# EXPECT_LINES entry is literal text that some line must contain. EXPECT_FILE, LOG and STATUS are
+# removed before the run; EXPECT_FILE must exist after it. stdout and stderr are checked together.
+# SETUP is a script included first (it writes the test's content). Each EXPECT_LOG regex must match
+# some line of LOG (`player play --log`); EXPECT_STATUS keys are JSON paths into STATUS with '.'
+# (errors.0 is the first error), each value a regex the JSON value must match.
 cmake_minimum_required(VERSION 3.20)
 foreach(var COMMAND EXPECT_RC)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "expect_output.cmake: -D${var}=... is required")
   endif()
 endforeach()
-string(REPLACE "|" ";" command "${COMMAND}")
-if(DEFINED EXPECT_FILE)
-  file(REMOVE "${EXPECT_FILE}")
+if(DEFINED SETUP)
+  include(${SETUP})
 endif()
+string(REPLACE "|" ";" command "${COMMAND}")
+foreach(file EXPECT_FILE LOG STATUS)
+  if(DEFINED ${file})
+    file(REMOVE "${${file}}")
+  endif()
+endforeach()
 execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 message("${out}")
 
@@ -71,6 +81,39 @@ if(DEFINED EXPECT_LINES)
 endif()
 if(DEFINED EXPECT_FILE AND NOT EXISTS "${EXPECT_FILE}")
   string(APPEND failures "expected the command to write ${EXPECT_FILE}\n")
+endif()
+if(DEFINED EXPECT_LOG)
+  file(STRINGS "${LOG}" log_lines)
+  string(REPLACE "|" ";" wanted "${EXPECT_LOG}")
+  foreach(pattern IN LISTS wanted)
+    set(found FALSE)
+    foreach(line IN LISTS log_lines)
+      if(line MATCHES "${pattern}")
+        set(found TRUE)
+        break()
+      endif()
+    endforeach()
+    if(NOT found)
+      string(APPEND failures "no line of ${LOG} matches: ${pattern}\n")
+    endif()
+  endforeach()
+endif()
+if(DEFINED EXPECT_STATUS)
+  file(READ "${STATUS}" json)
+  string(REPLACE "|" ";" wanted "${EXPECT_STATUS}")
+  foreach(entry IN LISTS wanted)
+    string(FIND "${entry}" "=" equals)
+    string(SUBSTRING "${entry}" 0 ${equals} key)
+    math(EXPR value_at "${equals} + 1")
+    string(SUBSTRING "${entry}" ${value_at} -1 pattern)
+    string(REPLACE "." ";" path "${key}")
+    string(JSON value ERROR_VARIABLE json_error GET "${json}" ${path})
+    if(json_error)
+      string(APPEND failures "status ${key}: ${json_error}\n")
+    elseif(NOT value MATCHES "${pattern}")
+      string(APPEND failures "status ${key}: expected /${pattern}/, got '${value}'\n")
+    endif()
+  endforeach()
 endif()
 if(failures)
   message(FATAL_ERROR "${COMMAND}\n${failures}")

@@ -297,6 +297,12 @@ void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, 
   if (timeline_) timeline_->replace(*playlist_, now);
   else timeline_ = std::make_unique<playback::Timeline>(*playlist_, now, wall_start_ + now);
   configured_item_ = -2;
+  // Scenes no item names any more are dropped with their GPU data.
+  for (auto it = scenes_.begin(); it != scenes_.end();) {
+    bool used = false;
+    for (const playback::Item& item : playlist_->items) used = used || item.scene == it->first;
+    it = used ? std::next(it) : scenes_.erase(it);
+  }
   for (size_t i = 0; i < playlist_->items.size(); ++i) {
     auto found = scenes_.find(playlist_->items[i].scene);
     if (found != scenes_.end() && !found->second.error.empty()) timeline_->set_playable(static_cast<int>(i), false);
@@ -314,12 +320,6 @@ void Player::request_scenes(const playback::Frame& frame) {
       loader_->load_scene(spec);
     }
   }
-  // Scenes no item needs any more (after a playlist change) are dropped with their GPU data.
-  for (auto it = scenes_.begin(); it != scenes_.end();) {
-    bool used = false;
-    for (const playback::Item& item : playlist_->items) used = used || item.scene == it->first;
-    it = used ? std::next(it) : scenes_.erase(it);
-  }
 }
 
 void Player::handle_loader() {
@@ -330,7 +330,7 @@ void Player::handle_loader() {
         report(result.error + " (the last good playlist keeps playing)");
         continue;
       }
-      // A changed playlist may name changed scenes: load those again too.
+      // Scenes it names anew load when their items come up; changed scene files come through inotify.
       apply_playlist(result.playlist, now_seconds());
       continue;
     }
@@ -601,8 +601,7 @@ void Player::render_frame(const playback::Frame& frame) {
   if (timeline_->paused() && state == State::playing) state = State::paused;
   if (state != state_) {
     state_ = state;
-    set_leds();
-    update_status(true);
+    update_status(true);  // sets the LEDs too
   }
 
   timer_.begin_frame();
@@ -619,6 +618,10 @@ void Player::render_frame(const playback::Frame& frame) {
     gl::api.ClearBufferfv(GL_COLOR, 0, black);
   }
   timer_.end_frame();
+  // Pass times arrive a frame or two late; the automatic prepass choice is made from them.
+  gl::FrameTimer::Times times;
+  if (timer_.poll(times) && gpu != nullptr && !checking_)
+    render::note_raster_time(targets_, render::to_pass_times(times, timer_.gpu_timed()));
   if (!gl_error_.empty()) {
     report("GL: " + gl_error_);
     gl_error_.clear();

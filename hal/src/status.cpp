@@ -156,6 +156,7 @@ std::string report_to_json(const StatusReport& report) {
   j["frame_ms_p50"] = report.frame_ms_p50;
   j["frame_ms_p99"] = report.frame_ms_p99;
   j["errors"] = report.errors;
+  j["warnings"] = report.warnings;
   if (report.self_check) {
     const auto& c = *report.self_check;
     j["self_check"] = {{"passed", c.passed},

@@ -108,7 +108,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"linux", "mock"}));
   play_cmd->add_option("--buttons-script", play.buttons_script, "Mock buttons: lines of `t_ms BUTTON press|release`");
   play_cmd->add_option("--status", play.status_file, "Status file (JSON, replaced atomically); default the board's status_file");
-  play_cmd->add_option("--log", play.log_file, "Write a line per frame: item, state, LED patterns, button actions");
+  play_cmd->add_option("--log", play.log_file,
+                       "Write a line per frame: item, state, LED patterns, button actions, frame time, resident memory");
+  play_cmd->add_option("--camera-script", play.camera_script, "Mock camera: lines of `t_ms unplug|replug` (with --hal mock)");
   SettingOptions play_settings;
   play_settings.add_to(*play_cmd, play.settings);
   cli.require_subcommand(0, 1);

@@ -12,7 +12,8 @@
 # removed before the run; EXPECT_FILE must exist after it. stdout and stderr are checked together.
 # SETUP is a script included first (it writes the test's content). Each EXPECT_LOG regex must match
 # some line of LOG (`player play --log`); EXPECT_STATUS keys are JSON paths into STATUS with '.'
-# (errors.0 is the first error), each value a regex the JSON value must match.
+# (errors.0 is the first error), each value a regex the JSON value must match. RSS_FLAT=F:K: the
+# log's rss_kib may grow by at most K KiB from frame F to its last frame.
 cmake_minimum_required(VERSION 3.20)
 foreach(var COMMAND EXPECT_RC)
   if(NOT DEFINED ${var})
@@ -97,6 +98,27 @@ if(DEFINED EXPECT_LOG)
       string(APPEND failures "no line of ${LOG} matches: ${pattern}\n")
     endif()
   endforeach()
+endif()
+if(DEFINED RSS_FLAT)
+  string(REPLACE ":" ";" rss "${RSS_FLAT}")
+  list(GET rss 0 from_frame)
+  list(GET rss 1 max_growth)
+  file(STRINGS "${LOG}" from_line REGEX "^${from_frame} ")
+  file(STRINGS "${LOG}" all_lines)
+  list(GET all_lines -1 last_line)
+  string(REGEX MATCH "rss_kib=([0-9]+)" ignored "${from_line}")
+  set(rss_from "${CMAKE_MATCH_1}")
+  string(REGEX MATCH "rss_kib=([0-9]+)" ignored "${last_line}")
+  set(rss_last "${CMAKE_MATCH_1}")
+  if(rss_from STREQUAL "" OR rss_last STREQUAL "")
+    string(APPEND failures "RSS_FLAT: no rss_kib at frame ${from_frame} or at the end of ${LOG}\n")
+  else()
+    math(EXPR growth "${rss_last} - ${rss_from}")
+    message("resident memory: ${rss_from} KiB at frame ${from_frame}, ${rss_last} KiB at the end (${growth} KiB)")
+    if(growth GREATER max_growth)
+      string(APPEND failures "resident memory grew by ${growth} KiB from frame ${from_frame}, more than ${max_growth}\n")
+    endif()
+  endif()
 endif()
 if(DEFINED EXPECT_STATUS)
   file(READ "${STATUS}" json)

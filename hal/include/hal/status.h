@@ -46,6 +46,7 @@ struct StatusReport {
   double fps = 0.0;                  // over the last second or so
   double frame_ms_p50 = 0.0, frame_ms_p99 = 0.0;  // frame-to-frame times over a recent window
   std::vector<std::string> errors;   // the recent ones, newest last, each naming its file or device
+  std::vector<std::string> warnings; // conditions that hold now (a camera lost); gone when they clear
   std::optional<CheckSummary> self_check;  // the last display self-check
 };
 

@@ -15,6 +15,8 @@
 #include <signal.h>
 #include <sys/inotify.h>
 #include <sys/signalfd.h>
+#include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +24,7 @@
 #include <cstring>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <map>
 #include <ostream>
@@ -100,6 +103,61 @@ class FrameStats {
 };
 
 bool is_playlist(const std::string& path) { return fs::path(path).extension() == ".toml"; }
+
+// `t_ms unplug|replug` a line, '#' comments, times not decreasing: what a test does to the mock camera.
+struct CameraStep {
+  double at_s;
+  bool plugged;
+};
+bool parse_camera_script(const std::string& path, std::vector<CameraStep>& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot open camera script";
+    return false;
+  }
+  std::string line;
+  double last = 0.0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    double ms = 0.0;
+    std::string what;
+    if (!(words >> ms)) continue;  // blank or comment
+    if (!(words >> what) || (what != "unplug" && what != "replug") || ms < last) {
+      error = path + ":" + std::to_string(number) + ": expected `t_ms unplug|replug` with times not decreasing";
+      return false;
+    }
+    last = ms;
+    out.push_back({ms / 1000.0, what == "replug"});
+  }
+  return true;
+}
+
+// Resident memory in KiB, from /proc/self/statm (only read when logging).
+long resident_kib() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+// Milliseconds since the process started (kernel start time, 10 ms resolution).
+double ms_since_process_start() {
+  std::ifstream stat("/proc/self/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const size_t close = text.rfind(')');
+  if (close == std::string::npos) return -1.0;
+  std::istringstream fields(text.substr(close + 2));
+  std::string field;
+  for (int i = 3; i < 22 && fields >> field; ++i) {
+  }
+  unsigned long long start_ticks = 0;
+  if (!(fields >> start_ticks)) return -1.0;
+  timespec boot{};
+  clock_gettime(CLOCK_BOOTTIME, &boot);
+  const double now_s = static_cast<double>(boot.tv_sec) + static_cast<double>(boot.tv_nsec) * 1e-9;
+  return (now_s - static_cast<double>(start_ticks) / static_cast<double>(sysconf(_SC_CLK_TCK))) * 1000.0;
+}
 
 class Player {
  public:
@@ -196,6 +254,11 @@ class Player {
   scene::Bounds shown_bounds_;
   std::string gl_error_, last_status_error_;
   int last_item_ = -1;
+  double last_error_s_ = -1e9;
+  std::vector<CameraStep> camera_script_;
+  size_t next_camera_step_ = 0;
+  std::uint64_t swaps_ = 0;  // scenes replaced by a newer version of their file
+  Clock::time_point last_log_ = Clock::now();
 
   hal::UniqueFd signal_fd_, inotify_fd_;
   std::map<int, std::string> watched_dirs_;  // watch descriptor -> folder
@@ -208,6 +271,7 @@ double Player::now_seconds() const {
 
 void Player::report(const std::string& error) {
   err_ << "warning: " << error << "\n";
+  last_error_s_ = now_seconds();
   if (std::find(errors_.begin(), errors_.end(), error) != errors_.end()) return;
   errors_.push_back(error);
   constexpr size_t kKeep = 16;  // the recent ones; the oldest go first
@@ -242,6 +306,17 @@ bool Player::set_up_hal() {
   status_led_ = devices_.status->find_led("status");
   error_led_ = devices_.status->find_led("error");
   if (backend == hal::Backend::Mock) mock_camera_ = dynamic_cast<hal::MockCamera*>(devices_.camera.get());
+  if (!options_.camera_script.empty()) {
+    std::string error;
+    if (mock_camera_ == nullptr) {
+      err_ << "error: --camera-script drives the mock camera: add --hal mock and a board with a camera\n";
+      return false;
+    }
+    if (!parse_camera_script(options_.camera_script, camera_script_, error)) {
+      err_ << "error: " << error << "\n";
+      return false;
+    }
+  }
   if (board_.self_check_interval_s > 0.0) next_check_ = board_.self_check_interval_s;
   return true;
 }
@@ -370,6 +445,7 @@ void Player::step_uploads() {
       loaded.incoming.reset();
       continue;
     }
+    if (loaded.gpu) ++swaps_;
     loaded.gpu = std::move(loaded.incoming);
     loaded.bounds = loaded.incoming_bounds;
     if (spec == shown_spec_) configured_item_ = -2;  // the radius may have changed: configure again
@@ -539,10 +615,17 @@ void Player::draw_check_frame() {
 
 void Player::service_camera(double now) {
   if (!devices_.camera) return;
+  while (next_camera_step_ < camera_script_.size() && camera_script_[next_camera_step_].at_s <= now) {
+    if (camera_script_[next_camera_step_++].plugged) mock_camera_->replug();
+    else mock_camera_->unplug();
+  }
   devices_.camera->service();
   const bool lost = devices_.camera->state() != hal::CameraState::Streaming;
-  if (lost && !camera_lost_) report("camera: " + devices_.camera->last_error());
-  camera_lost_ = lost;
+  if (lost != camera_lost_) {
+    if (lost) report("camera: " + devices_.camera->last_error());
+    camera_lost_ = lost;
+    update_status(true);
+  }
   if (!checking_) {
     devices_.camera->read_frame(capture_);  // keep the queue drained between checks
     return;
@@ -636,7 +719,10 @@ bool Player::scene_settled(int item) const {
 }
 
 void Player::set_leds() {
-  const LedPlan plan = led_plan(state_, camera_lost_ || !errors_.empty(), last_check_ && !last_check_->passed);
+  // A warning holds while a condition lasts (a camera lost) and for a minute after an error.
+  constexpr double kErrorShownFor = 60.0;
+  const bool warning = camera_lost_ || (!errors_.empty() && now_seconds() - last_error_s_ < kErrorShownFor);
+  const LedPlan plan = led_plan(state_, warning, last_check_ && !last_check_->passed);
   if (status_led_ && devices_.status->pattern(*status_led_) != plan.status) devices_.status->set_pattern(*status_led_, plan.status);
   if (error_led_ && devices_.status->pattern(*error_led_) != plan.error) devices_.status->set_pattern(*error_led_, plan.error);
 }
@@ -646,6 +732,16 @@ void Player::update_status(bool force) {
   constexpr double kPeriod = 2.0;  // often enough for a monitor, rarely enough for an SD card
   if (!force && now - last_status_s_ < kPeriod) return;
   last_status_s_ = now;
+  // GL errors are looked for here, every status period, not after each pass: glGetError costs a
+  // round trip on some drivers. (--check-errors style per-pass checks are for tests and debugging.)
+  if (platform_) {
+    const GLenum gl_status = gl::api.GetError();
+    if (gl_status != GL_NO_ERROR) {
+      char text[64];
+      std::snprintf(text, sizeof text, "GL error 0x%04x during playback", gl_status);
+      report(text);
+    }
+  }
   set_leds();
   hal::StatusReport report;
   report.state = std::string(name(state_));
@@ -655,6 +751,7 @@ void Player::update_status(bool force) {
   report.frame_ms_p99 = stats_.percentile(0.99);
   report.fps = report.frame_ms_p50 > 0.0 ? 1000.0 / report.frame_ms_p50 : 0.0;
   report.errors = errors_;
+  if (camera_lost_) report.warnings.push_back("camera: " + devices_.camera->last_error());
   report.self_check = last_check_;
   std::string error;
   if (!devices_.status->write_report(report, &error) && error != last_status_error_) {
@@ -788,12 +885,18 @@ int Player::run() {
       }
     }
     if (!platform_->present()) stop = true;
+    if (frame_ == 0) out_ << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
     service_camera(now);
     if (log_.is_open()) {
       log_ << frame_ << " t=" << now << " item=" << frame.item << " state=" << name(state_);
       for (size_t led = 0; led < devices_.status->led_count(); ++led)
         log_ << ' ' << devices_.status->led_name(led) << '=' << hal::to_string(devices_.status->pattern(led));
-      log_ << " actions=" << (pending_actions_.empty() ? "-" : pending_actions_) << "\n";
+      const Clock::time_point logged = Clock::now();
+      log_ << " actions=" << (pending_actions_.empty() ? "-" : pending_actions_) << " camera="
+           << (camera_lost_ ? "lost" : "ok") << " swaps=" << swaps_ << " ms="
+           << std::chrono::duration<double, std::milli>(logged - last_log_).count() << " rss_kib=" << resident_kib()
+           << "\n" << std::flush;  // read while the player runs (tests, benchmarks)
+      last_log_ = logged;
     }
     pending_actions_.clear();
 

@@ -25,7 +25,8 @@ struct PlayOptions {
   std::string hal;                  // "linux", "mock" or empty (linux with a board file, else mock)
   std::string buttons_script;       // mock buttons: `t_ms BUTTON press|release` lines
   std::string status_file;          // overrides the board's
-  std::string log_file;             // a line per frame: frame, item, state, leds, actions (tests)
+  std::string log_file;             // a line per frame: frame, item, state, leds, actions, times, memory (tests, benchmarks)
+  std::string camera_script;        // mock camera: `t_ms unplug|replug` lines (tests)
   render::FrameSettings settings;   // the command line's settings; a playlist item's `ao` overrides them
 };
 

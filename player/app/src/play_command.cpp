@@ -660,7 +660,7 @@ void Player::render_frame(const playback::Frame& frame) {
       const bool new_item = frame.item != configured_item_ || frame.sequence != configured_sequence_ || spec != shown_spec_;
       if (new_item || frame.cut) {
         std::string error;
-        if (!targets_.configure(programs_, caps_, settings_for(frame.item), gpu->radius(), error)) {
+        if (!targets_.configure(programs_, caps_, settings_for(frame.item), gpu->radius(), present_.srgb, error)) {
           report(spec + ": " + error);
           gpu = nullptr;
         }

@@ -212,7 +212,7 @@ void present_pass(const Frame& frame, const PresentTarget& target, float fade) {
   gl::api.Viewport(target.x, target.y, settings.width, settings.height);
   gl::api.Disable(GL_DEPTH_TEST);
   gl::api.Disable(GL_CULL_FACE);
-  gl::api.UseProgram((target.srgb ? frame.programs.present_linear : frame.programs.present_encoding).id());
+  gl::api.UseProgram(targets.present_program->id());  // chosen for target.srgb at configure
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_COMPOSITE_PARAMS, targets.composite_ubo.id());
   bind_texture(0, targets.albedo);
   bind_texture(1, targets.normal);

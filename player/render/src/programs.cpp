@@ -37,7 +37,7 @@ bool Programs::build(const gl::Caps&, std::string& error) {
       !build_raster(depth_only, "depth_only.frag", "", error) || !build_compute(depth_chain, "depth_chain.comp", "", error) ||
       !build_compute(upsample, "upsample.comp", "", error) || !build_compute(blur_gaussian, "blur.comp", "", error) ||
       !build_compute(blur_bilateral, "blur.comp", "#define BILATERAL 1\n", error) ||
-      !build_present(present_linear, "", error) || !build_present(present_encoding, "#define ENCODE_SRGB 1\n", error))
+      !present(Output::color, true, error) || !present(Output::color, false, error))
     return false;
   depth_chain_source_level = gl::uniform(depth_chain, "u_source_level");
   detail::assign_units(depth_chain, {"u_linear_depth"});
@@ -57,6 +57,17 @@ bool Programs::build(const gl::Caps&, std::string& error) {
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl::api.BindTexture(GL_TEXTURE_2D, 0);
   return true;
+}
+
+const gl::Program* Programs::present(Output output, bool srgb, std::string& error) {
+  gl::Program& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0];
+  if (!program) {
+    const std::string defines = "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" +
+                                (srgb ? "" : "#define ENCODE_SRGB 1\n");
+    if (!build_present(program, defines, error)) return nullptr;
+    gl::api.UseProgram(0);
+  }
+  return &program;
 }
 
 const gl::Program* Programs::ssao(ssao::Estimator estimator, std::string& error) {

@@ -31,7 +31,7 @@ bool Renderer::upload(const scene::Scene& scene, std::string& error) { return sc
 
 bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   gl_error_.clear();
-  return targets_.configure(programs_, caps_, settings, scene_.radius(), error);
+  return targets_.configure(programs_, caps_, settings, scene_.radius(), target_.srgb, error);
 }
 
 void Renderer::render(const View& view, float fade) {

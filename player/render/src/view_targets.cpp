@@ -13,7 +13,7 @@ void ViewTargets::reset_history() {
 }
 
 bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                            std::string& error) {
+                            bool srgb_target, std::string& error) {
   if (settings.width < 1 || settings.height < 1 || settings.width > caps.max_texture_size ||
       settings.height > caps.max_texture_size) {
     error = "--size: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " is outside 1.." +
@@ -23,6 +23,8 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
   ssao_program = programs.ssao(settings.ao_settings.estimator, error);
   if (ssao_program == nullptr) return false;
   ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator);
+  present_program = programs.present(settings.output, srgb_target, error);
+  if (present_program == nullptr) return false;
   settings_ = settings;
   reset_history();
 

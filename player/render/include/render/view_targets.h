@@ -14,8 +14,9 @@ class ViewTargets {
  public:
   // (Re)allocates the textures when the size or AO resolution changed and fixes the per-frame
   // constants for these settings and a scene of `scene_radius`. Returns false and says why.
+  // `srgb_target`: the framebuffer the view is presented into encodes sRGB itself.
   bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                 std::string& error);
+                 bool srgb_target, std::string& error);
   // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
   void reset_history();
 
@@ -31,6 +32,7 @@ class ViewTargets {
   shared_layout::SsaoParams ssao_params{};
   shared_layout::BlurParams blur_params[2]{};
   const gl::Program* ssao_program = nullptr;
+  const gl::Program* present_program = nullptr;
   GLint ssao_inverse_far = -1;
   int depth_levels = 1;
   float base_radius = 0.0f;

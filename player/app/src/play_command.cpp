@@ -1,4 +1,5 @@
 #include "app/play_command.h"
+#include "app/render_command.h"
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -669,13 +670,9 @@ void Player::render_frame(const playback::Frame& frame) {
         shown_spec_ = spec;
       }
       if (gpu != nullptr) {
-        scene::Framing framing;
-        framing.azimuth_deg = frame.camera.azimuth_deg;
-        framing.elevation_deg = frame.camera.elevation_deg;
-        framing.distance = frame.camera.distance;
-        framing.fov_y_deg = frame.camera.fov_deg;
         shown_bounds_ = found->second.bounds;
-        view_ = render::view_of(scene::frame(shown_bounds_, framing, targets_.settings().width, targets_.settings().height));
+        view_ = render::view_of(
+            scene::frame(shown_bounds_, framing_of(frame.camera), targets_.settings().width, targets_.settings().height));
       }
     } else {
       state = State::loading;

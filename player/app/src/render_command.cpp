@@ -4,6 +4,7 @@
 #include "gl/gl_api.h"
 #include "image_io.h"
 #include "platform/platform.h"
+#include "playback/timeline.h"
 #include "scene/load.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -119,6 +120,15 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
 }  // namespace
 
+scene::Framing framing_of(const playback::Camera& camera) {
+  scene::Framing framing;
+  framing.azimuth_deg = camera.azimuth_deg;
+  framing.elevation_deg = camera.elevation_deg;
+  framing.distance = camera.distance;
+  framing.fov_y_deg = camera.fov_deg;
+  return framing;
+}
+
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   const auto load_start = std::chrono::steady_clock::now();
   scene::Scene scene;
@@ -145,7 +155,17 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     err << "error: " << error << "\n";
     return 1;
   }
-  const scene::Camera camera = scene::frame(scene.bounds, options.framing, options.frame.width, options.frame.height);
+  // A one-item playback with a still camera: the same timeline says what `play` renders.
+  playback::Playlist playlist = playback::playlist_from_scenes({options.scene}, 1.0, 1.0);
+  playback::CameraPath& path = playlist.items.front().camera;
+  path.motion = playback::Motion::still;
+  path.azimuth_deg = options.framing.azimuth_deg;
+  path.elevation_deg = options.framing.elevation_deg;
+  path.distance = options.framing.distance;
+  path.fov_deg = options.framing.fov_y_deg;
+  playback::Timeline timeline(std::move(playlist), 0.0, 0.0);
+  const scene::Camera camera = scene::frame(scene.bounds, framing_of(timeline.at(0.0, 0.0).camera), options.frame.width,
+                                            options.frame.height);
 
   const int frames = std::max(1, options.frames);
   std::vector<render::PassTimes> times;

@@ -2,6 +2,7 @@
 // The player's sub-commands over the render pipeline: `render` (one scene to an image, per-pass
 // times, optional dump for independent evaluation) and `info` (platform and GL capabilities).
 #include "render/renderer.h"
+#include "playback/timeline.h"
 #include "scene/camera.h"
 
 #include <iosfwd>
@@ -19,6 +20,9 @@ struct RenderOptions {
   scene::Framing framing;
   render::FrameSettings frame;
 };
+
+// The framing a playback camera asks for (shared by `render` and `play`).
+scene::Framing framing_of(const playback::Camera& camera);
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);

@@ -97,6 +97,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(platform::names()))->capture_default_str();
   play_cmd->add_option("--size", play_size, "Surface size WxH (headless platforms; a window's initial size)")->capture_default_str();
   play_cmd->add_flag("--fullscreen", play.fullscreen, "Start the window fullscreen (F11 toggles)");
+  play_cmd->add_option("--overlay", play.overlay, "Panel with the status LEDs and the state: on, off, or auto (on in a window)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
   play_cmd->add_option("--frames", play.frames, "Stop after N frames (0: run until SIGTERM or SIGINT)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   play_cmd->add_option("--out", play.out_dir, "Write every frame as DIR/frame-NNNNNN.png");

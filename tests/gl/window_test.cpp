@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <chrono>
+#include <fstream>
 #include <cstdlib>
 #include <thread>
 
@@ -173,6 +174,53 @@ TEST(Window, PresentSucceedsFrameAfterFrameWhileTheWindowIsOpen) {
 }
 
 // Runs everywhere (not a Window* test): without a display the platform says so, without crashing.
+std::vector<uint8_t> read_png(const std::string& path, int& width, int& height) {
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) return {};
+  const OIIO::ImageSpec& spec = input->spec();
+  width = spec.width;
+  height = spec.height;
+  std::vector<uint8_t> pixels(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+  input->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pixels.data());
+  return pixels;
+}
+
+// `player play` in a window draws the LED and state panel in the top-left corner, and nothing else
+// differs from the headless frame: the panel region changes, the rest matches within the 1/255 of
+// an sRGB encode done elsewhere (see RendersTheFrameHeadlessEglRenders).
+TEST(WindowOverlay, PlayShowsTheLedPanelInTheCornerOnly) {
+  SKIP_WITHOUT_DISPLAY();
+  const std::string dir = std::string(PLAYER_TEST_OUTPUT_DIR) + "/window-overlay";
+  // A still camera: the window runs on the real clock, the headless run on its own.
+  const std::string common = " play " + dir + "/still.toml --size 320x240 --frames 10 --status " + dir + "/status.json";
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  {
+    std::ofstream playlist(dir + "/still.toml");
+    playlist << "[[item]]\nscene = \"builtin:demo\"\ncamera = { motion = \"still\" }\n";
+  }
+  ASSERT_EQ(std::system((std::string(PLAYER_BINARY) + common + " --platform window --out " + dir + "/window > /dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((std::string(PLAYER_BINARY) + common + " --platform egl --out " + dir + "/egl > /dev/null").c_str()), 0);
+  int w = 0, h = 0, ew = 0, eh = 0;
+  const auto window = read_png(dir + "/window/frame-000009.png", w, h);
+  const auto egl = read_png(dir + "/egl/frame-000009.png", ew, eh);
+  ASSERT_FALSE(window.empty());
+  ASSERT_EQ(window.size(), egl.size());
+  // The panel: two lamps and the state line, 6 px from the top-left corner (overlay.cpp).
+  size_t panel_changed = 0, outside_off = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 4;
+      int difference = 0;
+      for (int c = 0; c < 3; ++c) difference = std::max(difference, std::abs(window[i + c] - egl[i + c]));
+      const bool in_panel = x >= 6 && x < 200 && y >= 6 && y < 6 + 2 * 6 + 3 * 20;
+      const bool near_panel = x < 260 && y < 100;  // its exact width follows the longest line
+      if (in_panel) panel_changed += difference > 8 ? 1 : 0;
+      else if (!near_panel && difference > 1) ++outside_off;
+    }
+  EXPECT_GT(panel_changed, 194u * 84u / 2) << "the panel is not there";
+  EXPECT_EQ(outside_off, 0u);
+}
+
 TEST(NoDisplay, TheWindowPlatformSaysWhyInOneLine) {
   std::vector<std::pair<const char*, std::string>> saved;
   for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER"}) {

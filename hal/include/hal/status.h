@@ -68,6 +68,7 @@ public:
   const std::string& led_name(std::size_t led) const { return names_[led]; }
   void set_pattern(std::size_t led, LedPattern p);
   LedPattern pattern(std::size_t led) const { return leds_[led].pattern; }
+  bool level(std::size_t led) const { return leds_[led].level; }  // lit now (as of the last update())
   // The sink's last failure to drive an LED (e.g. its chip was removed); empty when none.
   const std::string& led_error() const { return sink_->last_error(); }
 

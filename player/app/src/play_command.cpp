@@ -9,6 +9,7 @@
 #include "hal/self_check.h"
 #include "image_io.h"
 #include "loader.h"
+#include "overlay.h"
 #include "playback/timeline.h"
 #include "render/renderer.h"
 
@@ -260,6 +261,10 @@ class Player {
   size_t next_camera_step_ = 0;
   std::uint64_t swaps_ = 0;  // scenes replaced by a newer version of their file
   Clock::time_point last_log_ = Clock::now();
+
+  Overlay overlay_;
+  bool overlay_on_ = false;
+  std::vector<Overlay::Lamp> lamps_;
 
   hal::UniqueFd signal_fd_, inotify_fd_;
   std::map<int, std::string> watched_dirs_;  // watch descriptor -> folder
@@ -812,6 +817,8 @@ int Player::run() {
       return 2;
     }
   timer_.create(caps_.timer_query, false);
+  overlay_on_ = options_.overlay == "on" || (options_.overlay == "auto" && platform_->name() == "window");
+  lamps_.resize(devices_.status->led_count());
   out_ << "platform: " << platform_->name() << " (" << platform_->description() << "; " << caps_.renderer << ")\n";
   out_ << "playing " << (playlist_path_.empty() ? std::string("the command line's scenes") : playlist_path_) << ": "
        << playlist_->items.size() << " item(s)\n" << std::flush;
@@ -872,6 +879,12 @@ int Player::run() {
     }
     last_item_ = frame.item;
     render_frame(frame);
+    if (overlay_on_) {
+      for (size_t led = 0; led < lamps_.size(); ++led)
+        lamps_[led] = {devices_.status->led_name(led), hal::to_string(devices_.status->pattern(led)), devices_.status->level(led)};
+      overlay_.update(name(state_), lamps_, present_.srgb);
+      overlay_.draw(present_.framebuffer, platform_->size().height);
+    }
     if (!options_.out_dir.empty()) {
       char name[32];
       std::snprintf(name, sizeof name, "frame-%06lld.png", frame_);

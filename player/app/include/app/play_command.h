@@ -18,6 +18,7 @@ struct PlayOptions {
   std::string platform = "auto";
   int width = 1024, height = 768;
   bool fullscreen = false;
+  std::string overlay = "auto";     // the LED and state panel: on, off, or auto (on in a window)
   long long frames = 0;             // stop after this many frames; 0: run until stopped
   std::string out_dir;              // headless: write every frame as DIR/frame-NNNNNN.png
   double fps = 0.0;                 // pace frames and the playlist clock; 0: as fast as possible, 1/30 s a frame

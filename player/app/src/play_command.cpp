@@ -723,7 +723,8 @@ bool Player::scene_settled(int item) const {
 void Player::set_leds() {
   // A warning holds while a condition lasts (a camera lost) and for a minute after an error.
   constexpr double kErrorShownFor = 60.0;
-  const bool warning = camera_lost_ || (!errors_.empty() && now_seconds() - last_error_s_ < kErrorShownFor);
+  const bool warning = camera_lost_ || !devices_.problems.empty() ||
+                       (!errors_.empty() && now_seconds() - last_error_s_ < kErrorShownFor);
   const LedPlan plan = led_plan(state_, warning, last_check_ && !last_check_->passed);
   if (status_led_ && devices_.status->pattern(*status_led_) != plan.status) devices_.status->set_pattern(*status_led_, plan.status);
   if (error_led_ && devices_.status->pattern(*error_led_) != plan.error) devices_.status->set_pattern(*error_led_, plan.error);
@@ -753,6 +754,7 @@ void Player::update_status(bool force) {
   report.frame_ms_p99 = stats_.percentile(0.99);
   report.fps = report.frame_ms_p50 > 0.0 ? 1000.0 / report.frame_ms_p50 : 0.0;
   report.errors = errors_;
+  report.warnings = devices_.problems;  // devices missing since start: the player goes on without them
   if (camera_lost_) report.warnings.push_back("camera: " + devices_.camera->last_error());
   report.self_check = last_check_;
   std::string error;

@@ -210,10 +210,15 @@ TEST_P(Stress, DegenerateGeometryGivesBoundedAoAndNoNaN) {
 TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
   // Mesa's llvmpipe computes mediump at 32 bits, so the fp16 variant is emulated on the CPU: the
   // reference rounds exactly what ssao.comp's AO_MEDIUMP variant declares mediump (the per-sample
-  // offsets and depth differences, all relative to the shaded point) and runs on the G-buffer the GPU
-  // drew. Same bound as the other stress tests. Scenes near the origin and scaled by 1e3.
-  for (double scale : {1.0, 1e3}) {
-    for (ssao::Estimator estimator : {ssao::Estimator::sphere, ssao::Estimator::hemisphere}) {
+  // offsets and depth differences, all relative to the shaded point; the horizon's per-tap offsets in
+  // units of the radius and their horizon cosines) and runs on the G-buffer the GPU drew. Same bound
+  // as the other stress tests. Scenes near the origin and scaled by 1e3 and 1e-3: fp16 holds 11
+  // significant bits whatever the scale, and nothing per sample may depend on the scene's units.
+  // That the rounding is really applied: each estimator's emulation must differ from highp somewhere
+  // (a point sample flips only near a boundary, so at some scale, not at every one).
+  size_t changed_by_estimator[std::size(ssao::kEstimators)] = {};
+  for (double scale : {1.0, 1e3, 1e-3}) {
+    for (ssao::Estimator estimator : ssao::kEstimators) {
       scene::Scene scaled = spheres();
       for (scene::Instance& instance : scaled.instances)
         instance.world = glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) * instance.world;
@@ -228,10 +233,11 @@ TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
       const auto high = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
       const auto medium = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
       double sum = 0.0;
-      size_t objects = 0, off = 0;
+      size_t objects = 0, off = 0, changed = 0;
       for (size_t i = 0; i < high.size(); ++i) {
         if (depth[i] <= 0.0f) continue;
         const double delta = std::abs(high[i].x - medium[i].x);
+        changed += delta > 0.0 ? 1 : 0;
         sum += delta;
         off += delta > 1.0 / 16.0 + 1e-3 ? 1 : 0;
         ++objects;
@@ -242,8 +248,11 @@ TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
                 << ", share off by more than a sample " << static_cast<double>(off) / static_cast<double>(objects) << "\n";
       EXPECT_LE(sum / static_cast<double>(objects), kMeanBound) << what;
       EXPECT_LE(static_cast<double>(off) / static_cast<double>(objects), kShareBound) << what;
+      changed_by_estimator[static_cast<size_t>(estimator)] += changed;
     }
   }
+  for (ssao::Estimator estimator : ssao::kEstimators)
+    EXPECT_GT(changed_by_estimator[static_cast<size_t>(estimator)], 0u) << ssao::name(estimator) << ": the fp16 emulation changed nothing";
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, Stress, ::testing::Values("egl", "osmesa"), test::platform_name);

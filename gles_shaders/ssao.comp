@@ -36,13 +36,15 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
   return vec3((ndc + ssao.unproject.zw) * depth * ssao.unproject.xy, -depth);
 }
 
-#if ESTIMATOR != ESTIMATOR_HORIZON
-// Per-sample arithmetic runs at this precision; AO_MEDIUMP makes it fp16 as embedded GPUs run it.
+// Per-sample arithmetic runs at this precision; AO_MEDIUMP (--precision mediump) makes it fp16 as
+// embedded GPUs run it.
 #ifdef AO_MEDIUMP
 #define SAMPLE_PRECISION mediump
 #else
 #define SAMPLE_PRECISION highp
 #endif
+
+#if ESTIMATOR != ESTIMATOR_HORIZON
 
 #if ESTIMATOR == ESTIMATOR_HEMISPHERE
 // How far the shaded point's tangent plane lies from the eye along the ray through `ndc` (0 where the
@@ -136,10 +138,12 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
         if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
         highp float sample_depth = depth_at(texel, level);
         if (sample_depth <= 0.0) continue;
-        highp vec3 delta = view_position(texel, sample_depth) - position;
-        highp float distance = length(delta);
-        if (distance >= radius || distance <= 0.0) continue;
-        highp float horizon = dot(delta, view) / distance;
+        // Per tap, everything is relative to the shaded point and in units of the radius, so at
+        // mediump the offsets keep their precision and their squares cannot overflow within the radius.
+        SAMPLE_PRECISION vec3 delta = (view_position(texel, sample_depth) - position) / radius;
+        SAMPLE_PRECISION float distance = length(delta);
+        if (distance >= 1.0 || distance <= 0.0) continue;
+        SAMPLE_PRECISION float horizon = dot(delta, view) / distance;
         if (side == 0) horizon_plus = max(horizon_plus, horizon);
         else horizon_minus = max(horizon_minus, horizon);
       }

@@ -808,16 +808,17 @@ int Player::run() {
   caps_ = gl::query_caps();
   gl::install_debug_log(caps_, false);
   present_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
-  // Every SSAO variant now, so a playlist item with another estimator does not compile mid-play.
+  // Every SSAO variant now, so a playlist item with another estimator or precision does not compile mid-play.
   if (!programs_.build(caps_, error)) {
     err_ << "error: " << error << "\n";
     return 2;
   }
   for (ssao::Estimator estimator : ssao::kEstimators)
-    if (!programs_.ssao(estimator, error)) {
-      err_ << "error: " << error << "\n";
-      return 2;
-    }
+    for (ssao::Precision precision : ssao::kPrecisions)
+      if (!programs_.ssao(estimator, precision, error)) {
+        err_ << "error: " << error << "\n";
+        return 2;
+      }
   timer_.create(caps_.timer_query, false);
   overlay_on_ = options_.overlay == "on" || (options_.overlay == "auto" && platform_->name() == "window");
   lamps_.resize(devices_.status->led_count());

@@ -92,6 +92,7 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
       {"ao",
        {{"enabled", frame.ao},
         {"estimator", std::string(ssao::name(frame.ao_settings.estimator))},
+        {"precision", std::string(ssao::name(frame.ao_settings.precision))},
         {"resolution", frame.ao_settings.half_resolution ? "half" : "full"},
         {"depth_chain", frame.ao_settings.depth_chain},
         {"skip_radii", frame.ao_settings.skip_radii},

@@ -70,12 +70,14 @@ const gl::Program* Programs::present(Output output, bool srgb, std::string& erro
   return &program;
 }
 
-const gl::Program* Programs::ssao(ssao::Estimator estimator, std::string& error) {
-  gl::Program& program = ssao_[index(estimator)];
+const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error) {
+  gl::Program& program = ssao_[index(estimator)][index(precision)];
   if (!program) {
-    const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n";
+    const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n" +
+                                (precision == ssao::Precision::mediump ? "#define AO_MEDIUMP 1\n" : "");
     if (!build_compute(program, "ssao.comp", defines, error)) return nullptr;
-    ssao_inverse_far_[index(estimator)] = gl::uniform(program, "u_inverse_far");
+    ssao_inverse_far_[index(estimator)][index(precision)] = gl::uniform(program, "u_inverse_far");
+    ssao_defines_[index(estimator)][index(precision)] = defines;
     detail::assign_units(program, {"u_linear_depth", "u_normal"});
     gl::api.UseProgram(0);
   }

@@ -20,9 +20,10 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
             std::to_string(caps.max_texture_size) + " per side";
     return false;
   }
-  ssao_program = programs.ssao(settings.ao_settings.estimator, error);
+  ssao_program = programs.ssao(settings.ao_settings.estimator, settings.ao_settings.precision, error);
   if (ssao_program == nullptr) return false;
-  ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator);
+  ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator, settings.ao_settings.precision);
+  ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision);
   present_program = programs.present(settings.output, srgb_target, error);
   if (present_program == nullptr) return false;
   settings_ = settings;

@@ -9,6 +9,8 @@ namespace ssao {
 
 std::string_view name(Blur blur) { return names::name_of<Blur>(kBlurNames, blur); }
 std::optional<Blur> parse_blur(std::string_view text) { return names::parse<Blur>(kBlurNames, text); }
+std::string_view name(Precision precision) { return names::name_of<Precision>(kPrecisionNames, precision); }
+std::optional<Precision> parse_precision(std::string_view text) { return names::parse<Precision>(kPrecisionNames, text); }
 
 shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
   shared_layout::SsaoParams params{};

@@ -73,8 +73,10 @@ struct Frame {
     return static_cast<float>(hidden) / static_cast<float>(p.counts.x);
   }
 
+  // `mediump` rounds the per-tap values that ssao.comp declares SAMPLE_PRECISION to half floats.
   float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, float d, float turn_angle,
-                          float radius, int level) const {
+                          float radius, int level, bool mediump) const {
+    const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
     const float radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0f) return 0.0f;
     const int slices = std::max(1, p.counts.x / 8);
@@ -105,10 +107,11 @@ struct Frame {
           if (outside(texel, full)) continue;
           const float sample_depth = depth_at(texel, level);
           if (sample_depth <= 0.0f) continue;
-          const glm::vec3 delta = view_position(texel, sample_depth) - position;
-          const float distance = glm::length(delta);
-          if (distance >= radius || distance <= 0.0f) continue;
-          const float horizon = glm::dot(delta, view) / distance;
+          glm::vec3 delta = (view_position(texel, sample_depth) - position) / radius;
+          for (int c = 0; c < 3; ++c) delta[c] = sample_precision(delta[c]);
+          const float distance = sample_precision(glm::length(delta));
+          if (distance >= 1.0f || distance <= 0.0f) continue;
+          const float horizon = sample_precision(glm::dot(delta, view) / distance);
           if (side == 0) horizon_plus = std::max(horizon_plus, horizon);
           else horizon_minus = std::max(horizon_minus, horizon);
         }
@@ -194,7 +197,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const float radius = frame.radius_at(k);
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
-                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
+                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level, mediump)
                               : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));

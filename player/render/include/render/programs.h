@@ -1,6 +1,6 @@
 #pragma once
-// Every compiled program the passes use, built once per context. SSAO variants (one per estimator)
-// are compiled on first use and kept.
+// Every compiled program the passes use, built once per context. SSAO variants (one per estimator
+// and precision) are compiled on first use and kept.
 #include "gl/caps.h"
 #include "gl/objects.h"
 #include "render/settings.h"
@@ -20,9 +20,16 @@ class Programs {
  public:
   // Returns false and says why (the file, the variant and the driver's log).
   bool build(const gl::Caps& caps, std::string& error);
-  // The SSAO program for `estimator`, compiled now if it was not yet; null and `error` on failure.
-  const gl::Program* ssao(ssao::Estimator estimator, std::string& error);
-  GLint ssao_inverse_far(ssao::Estimator estimator) const { return ssao_inverse_far_[index(estimator)]; }
+  // The SSAO program for `estimator` at `precision` (mediump: the AO_MEDIUMP variant), compiled now if
+  // it was not yet; null and `error` on failure.
+  const gl::Program* ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error);
+  GLint ssao_inverse_far(ssao::Estimator estimator, ssao::Precision precision) const {
+    return ssao_inverse_far_[index(estimator)][index(precision)];
+  }
+  // The #defines that variant was compiled with (empty before it was): what really selects it.
+  std::string_view ssao_defines(ssao::Estimator estimator, ssao::Precision precision) const {
+    return ssao_defines_[index(estimator)][index(precision)];
+  }
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   gl::Program depth_chain, blur_gaussian, blur_bilateral, upsample;
@@ -35,9 +42,12 @@ class Programs {
 
  private:
   static size_t index(ssao::Estimator estimator) { return static_cast<size_t>(estimator); }
-  std::array<gl::Program, 3> ssao_{};
+  static size_t index(ssao::Precision precision) { return static_cast<size_t>(precision); }
+  std::array<std::array<gl::Program, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_{};
   std::array<std::array<gl::Program, 2>, std::size(kOutputNames)> present_{};
-  std::array<GLint, 3> ssao_inverse_far_{-1, -1, -1};
+  std::array<std::array<std::string, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_defines_{};
+  std::array<std::array<GLint, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_inverse_far_{
+      {{-1, -1}, {-1, -1}, {-1, -1}}};
 };
 
 }  // namespace render

@@ -32,6 +32,7 @@ class ViewTargets {
   shared_layout::SsaoParams ssao_params{};
   shared_layout::BlurParams blur_params[2]{};
   const gl::Program* ssao_program = nullptr;
+  std::string_view ssao_defines;  // the #defines ssao_program was compiled with (its variant)
   const gl::Program* present_program = nullptr;
   GLint ssao_inverse_far = -1;
   int depth_levels = 1;

@@ -9,10 +9,19 @@
 
 namespace ssao {
 
+// What the SSAO pass's per-sample arithmetic runs at: highp (32 bits), or mediump, the AO_MEDIUMP
+// variant of ssao.comp, fp16 where the GPU has it (as embedded GPUs run it; llvmpipe runs it at 32 bits).
+enum class Precision { highp, mediump };
+inline constexpr Precision kPrecisions[] = {Precision::highp, Precision::mediump};
+inline constexpr names::Named<Precision> kPrecisionNames[] = {{Precision::highp, "highp"}, {Precision::mediump, "mediump"}};
+std::string_view name(Precision precision);
+std::optional<Precision> parse_precision(std::string_view text);
+
 // The defaults are the configuration aobench put on the time-error front ahead of the paper's
 // (sphere, 8 samples x 5 radii, Gaussian blur): see README, "Run time against error".
 struct AoSettings {
   Estimator estimator = Estimator::horizon;
+  Precision precision = Precision::highp;
   int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
   int radii = 1;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;

@@ -22,7 +22,8 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 
 // AO at the AO resolution of `params` (full or half). `view_normals` are the G-buffer's view-space
 // normals at full resolution (used by the hemisphere and horizon estimators). `mediump` emulates the
-// AO_MEDIUMP variant of the point-sampled estimators by rounding its per-sample values to half floats.
+// AO_MEDIUMP variant (--precision mediump) of every estimator by rounding what ssao.comp declares
+// SAMPLE_PRECISION (per-sample offsets and depth differences, per-tap offsets and horizons) to half floats.
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
                                     const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump = false);

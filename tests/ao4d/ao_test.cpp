@@ -330,13 +330,31 @@ TEST(Bvh, ClosestHitMatchesBruteForce) {
 }
 
 TEST(Bvh, SkipsTheCellARayStartsOn) {
-    const Scene scene(test::floor_mesh(1.0));
-    const auto hit = scene.closest_hit({0.1, 0.2, 0.3, 1}, {0, 0, 0, -1}, 0.0, 2.0);
+    // Two floors, w = 0 over w = -3. The ray meets the upper one at (0.1, 0.2, 0.3): in the box's
+    // (u, v, w) = (0.55, 0.6, 0.65), all different, so inside one Kuhn cell and on no shared face.
+    // The floors lie further apart than the cells' width, so the BVH splits them first and the ray
+    // reaches the skipped cell before any cell below: a skip that ended the search would show.
+    TetMesh mesh = test::floor_mesh(1.0);
+    test::add_box(mesh, {-1, -1, -1, -3}, {2, 0, 0, 0}, {0, 2, 0, 0}, {0, 0, 2, 0}, {0, 0, 0, 1});
+    const Scene scene(mesh);
+    const Vec4 origin{0.1, 0.2, 0.3, 1}, down{0, 0, 0, -1};
+    const auto hit = scene.closest_hit(origin, down, 0.0, 5.0);
     ASSERT_TRUE(hit);
-    const auto again = scene.closest_hit({0.1, 0.2, 0.3, 1}, {0, 0, 0, -1}, 0.0, 2.0, hit->cell);
-    if (again) {
-        EXPECT_NE(again->cell, hit->cell);  // a neighbour sharing the hit edge may still answer
-    }
+    EXPECT_DOUBLE_EQ(hit->t, 1.0);
+    ASSERT_LT(hit->cell, 6u) << "the upper floor's cells come first";
+    // Skipping that cell, and only it: the ray passes through the upper floor and meets the lower one.
+    const auto again = scene.closest_hit(origin, down, 0.0, 5.0, hit->cell);
+    ASSERT_TRUE(again) << "skipping one cell hid the floor below it";
+    EXPECT_DOUBLE_EQ(again->t, 4.0);
+    EXPECT_GE(again->cell, 6u);
+    EXPECT_TRUE(scene.occluded(origin, down, 0.0, 5.0, hit->cell));
+    EXPECT_FALSE(scene.occluded(origin, down, 0.0, 3.5, hit->cell)) << "the skipped cell still occludes";
+    // A ray starting on the cell, as AO rays do, sees only the floor below.
+    const Vec4 on{0.1, 0.2, 0.3, 0};
+    const auto below = scene.closest_hit(on, down, 0.0, 5.0, hit->cell);
+    ASSERT_TRUE(below);
+    EXPECT_DOUBLE_EQ(below->t, 3.0);
+    EXPECT_GE(below->cell, 6u);
 }
 
 }  // namespace

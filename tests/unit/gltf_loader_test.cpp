@@ -141,8 +141,60 @@ TEST_F(GltfLoader, LoadsATriangleWithNodeTransforms) {
   EXPECT_NEAR(loaded.bounds.max.y, 2.0, 1e-12);
 }
 
-TEST_F(GltfLoader, StripsAndFansBecomeCounterClockwiseTriangleLists) {
-  // A unit square as a strip (0,1,2,3 zig-zag) and as a fan; every triangle must face +Z.
+// The source vertex of every output index. Without NORMAL the loader gives each triangle its own
+// vertices (flat normals), so the vertex is told by its position: vertex v of vertex_row() lies at x = v.
+std::vector<uint32_t> source_vertices(const scene::Mesh& mesh) {
+  std::vector<uint32_t> out;
+  for (uint32_t index : mesh.indices) out.push_back(static_cast<uint32_t>(std::lround(mesh.vertices.at(index).position.x)));
+  return out;
+}
+
+// m vertices with x = v, none three in a line (y = v^2 / 10), so every triangle has a normal.
+std::vector<float> vertex_row(int m) {
+  std::vector<float> positions;
+  for (int v = 0; v < m; ++v) positions.insert(positions.end(), {float(v), 0.1f * float(v * v), 0.0f});
+  return positions;
+}
+
+// glTF 2.0, 3.7.2.1 (Topology Types): triangle p_i of a strip is {v_i, v_(i + (1 + i % 2)), v_(i + (2 - i % 2))},
+// of a fan {v_(i + 1), v_(i + 2), v_0}, for 0 <= i < count - 2; v_k is the k-th index (or vertex).
+std::vector<uint32_t> spec_triangles(int mode, const std::vector<uint32_t>& v) {
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == 5) out.insert(out.end(), {v[i], v[i + (1 + i % 2)], v[i + (2 - i % 2)]});
+    else out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+  }
+  return out;
+}
+
+TEST_F(GltfLoader, StripsAndFansBecomeTheTrianglesTheSpecDefines) {
+  for (int mode : {5, 6})
+    for (int m : {3, 4, 5, 6, 8, 9}) {
+      // Indexed, through a permutation (gcd(7, m) = 1), so the rule must act on indices, not vertices.
+      std::vector<uint16_t> indices;
+      std::vector<uint32_t> v;
+      for (int i = 0; i < m; ++i) {
+        indices.push_back(static_cast<uint16_t>((7 * i + 3) % m));
+        v.push_back(indices.back());
+      }
+      json doc = triangle(vertex_row(m), indices);
+      doc["meshes"][0]["primitives"][0]["mode"] = mode;
+      const scene::Scene indexed = load_ok(write(doc));
+      ASSERT_EQ(indexed.meshes.size(), 1u) << "mode " << mode << ", " << m << " indices";
+      EXPECT_EQ(source_vertices(indexed.meshes[0]), spec_triangles(mode, v)) << "mode " << mode << ", " << m << " indices";
+    }
+  for (int mode : {5, 6})
+    for (int m : {3, 4, 5, 6, 7}) {
+      json doc = triangle(vertex_row(m));
+      doc["meshes"][0]["primitives"][0]["mode"] = mode;
+      doc["meshes"][0]["primitives"][0].erase("indices");
+      std::vector<uint32_t> v;
+      for (int i = 0; i < m; ++i) v.push_back(static_cast<uint32_t>(i));
+      const scene::Scene plain = load_ok(write(doc));
+      ASSERT_EQ(plain.meshes.size(), 1u) << "mode " << mode << ", " << m << " vertices";
+      EXPECT_EQ(source_vertices(plain.meshes[0]), spec_triangles(mode, v)) << "mode " << mode << ", " << m << " vertices";
+    }
+  // A unit square as a strip and as a fan: both its triangles face +Z, as the spec's order promises.
   for (int mode : {5, 6}) {
     json doc = mode == 5 ? triangle({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, {0, 1, 2, 3})
                          : triangle({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 3});
@@ -155,6 +207,31 @@ TEST_F(GltfLoader, StripsAndFansBecomeCounterClockwiseTriangleLists) {
                       c = mesh.vertices[mesh.indices[t + 2]].position;
       EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << "mode " << mode << " triangle " << t / 3;
     }
+  }
+}
+
+TEST_F(GltfLoader, TriangleListsKeepTheirIndicesAndDropAnIncompleteLastTriangle) {
+  // The spec requires a multiple of 3; the loader keeps the whole triangles and drops the rest.
+  const std::vector<uint16_t> indices = {4, 0, 2, 1, 3, 5, 6};
+  const scene::Scene loaded = load_ok(write(triangle(vertex_row(7), indices)));
+  EXPECT_EQ(source_vertices(loaded.meshes.at(0)), (std::vector<uint32_t>{4, 0, 2, 1, 3, 5}));
+}
+
+TEST_F(GltfLoader, PointsAndLinesAreSkippedWithAWarningNamingThePrimitive) {
+  // Modes 0..3 (POINTS, LINES, LINE_LOOP, LINE_STRIP) have no triangles to shade: the primitive is
+  // dropped and named in a warning, and the file's triangles still load.
+  for (int mode : {0, 1, 2, 3}) {
+    json doc = triangle(vertex_row(4), {0, 1, 2, 1, 3, 2});
+    json lines = doc["meshes"][0]["primitives"][0];
+    lines["mode"] = mode;
+    doc["meshes"][0]["primitives"].push_back(lines);
+    scene::Scene out;
+    scene::LoadReport report;
+    ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+    ASSERT_EQ(out.meshes.size(), 1u) << "mode " << mode;
+    EXPECT_EQ(source_vertices(out.meshes[0]), (std::vector<uint32_t>{0, 1, 2, 1, 3, 2})) << "mode " << mode;
+    ASSERT_EQ(report.warnings.size(), 1u) << "mode " << mode;
+    EXPECT_EQ(report.warnings[0], "meshes[0].primitives[1]: mode " + std::to_string(mode) + " is not triangles; skipped");
   }
 }
 
@@ -234,6 +311,32 @@ TEST_F(GltfLoader, NonFinitePositionsAreRejected) {
 TEST_F(GltfLoader, OutOfRangeIndicesAreRejected) {
   const std::string error = error_of(write(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 7})));
   EXPECT_NE(error.find("indices: element 2 is 7, expected less than the vertex count 3"), std::string::npos) << error;
+  // At the bound: the vertex count itself is one too many, one less is the last vertex.
+  const std::string at_bound = error_of(write(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {3, 1, 2})));
+  EXPECT_NE(at_bound.find("indices: element 0 is 3, expected less than the vertex count 3"), std::string::npos) << at_bound;
+  EXPECT_EQ(load_ok(write(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {2, 1, 0}))).triangle_count(), 1u);
+}
+
+TEST_F(GltfLoader, AccessorBoundsAreCheckedAtTheirLastByte) {
+  // triangle() fits its views exactly (36 bytes of positions, 6 of indices), so it loads; one more
+  // element or a 4-byte offset needs 48 or 40 bytes, and an accessor index equal to their count is out.
+  EXPECT_EQ(load_ok(write(triangle())).triangle_count(), 1u);
+  json doc = triangle();
+  doc["accessors"][0]["count"] = 4;
+  std::string error = error_of(write(doc));
+  EXPECT_NE(error.find("attributes.POSITION (accessors[0]): needs 48 bytes but its buffer view has 36"), std::string::npos) << error;
+  doc = triangle();
+  doc["accessors"][0]["byteOffset"] = 4;
+  error = error_of(write(doc));
+  EXPECT_NE(error.find("needs 40 bytes but its buffer view has 36"), std::string::npos) << error;
+  doc = triangle();
+  doc["accessors"][1]["count"] = 4;
+  error = error_of(write(doc));
+  EXPECT_NE(error.find("indices (accessors[1]): needs 8 bytes but its buffer view has 6"), std::string::npos) << error;
+  doc = triangle();
+  doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 2;
+  error = error_of(write(doc));
+  EXPECT_NE(error.find("attributes.POSITION: accessor index 2 out of range (there are 2)"), std::string::npos) << error;
 }
 
 TEST_F(GltfLoader, AccessorsBeyondTheirBufferViewAreRejected) {

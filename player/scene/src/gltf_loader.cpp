@@ -429,14 +429,12 @@ class Builder {
 
   static std::vector<uint32_t> to_triangle_list(const std::vector<uint32_t>& in, int mode) {
     std::vector<uint32_t> out;
+    // glTF 2.0, 3.7.2.1: strip triangle i is {v_i, v_(i+1+i%2), v_(i+2-i%2)} (every other one flipped
+    // back to counter-clockwise), fan triangle i is {v_(i+1), v_(i+2), v_0}; kept in exactly that order.
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-      for (size_t i = 2; i < in.size(); ++i) {
-        // Every other triangle of a strip is flipped back to counter-clockwise.
-        if (i % 2 == 0) out.insert(out.end(), {in[i - 2], in[i - 1], in[i]});
-        else out.insert(out.end(), {in[i - 1], in[i - 2], in[i]});
-      }
+      for (size_t i = 0; i + 2 < in.size(); ++i) out.insert(out.end(), {in[i], in[i + 1 + i % 2], in[i + 2 - i % 2]});
     } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-      for (size_t i = 2; i < in.size(); ++i) out.insert(out.end(), {in[0], in[i - 1], in[i]});
+      for (size_t i = 0; i + 2 < in.size(); ++i) out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
     } else {
       out.assign(in.begin(), in.begin() + static_cast<std::ptrdiff_t>(in.size() / 3 * 3));
     }

@@ -3,13 +3,20 @@
 # success, so a broken command could pass.
 #
 #   cmake -DCOMMAND=prog|arg|... -DEXPECT_RC=N [-DEXPECT_FIRST=line] [-DEXPECT_LAST=line]
-#         [-DEXPECT_LINES=text|text|...] [-DEXPECT_FILE=path] [-DSETUP=script.cmake]
-#         [-DLOG=file -DEXPECT_LOG=regex|...] [-DSTATUS=file -DEXPECT_STATUS=key=regex|...]
-#         -P expect_output.cmake
+#         [-DEXPECT_LINES=text|text|...] [-DEXPECT_MATCHES=regex|...]
+#         [-DEXPECT_FILE=path|...] [-DEXPECT_PNG=path:WxH|...] [-DNO_FILE=path] [-DCHECK=prog|arg|...]
+#         [-DSETUP=script.cmake] [-DLOG=file -DEXPECT_LOG=regex|...]
+#         [-DSTATUS=file -DEXPECT_STATUS=key=regex|...] -P expect_output.cmake
 #
 # '|' separates arguments and expectations. EXPECT_FIRST and EXPECT_LAST are whole lines; each
-# EXPECT_LINES entry is literal text that some line must contain. EXPECT_FILE, LOG and STATUS are
-# removed before the run; EXPECT_FILE must exist after it. stdout and stderr are checked together.
+# EXPECT_LINES entry is literal text that some line must contain; each EXPECT_MATCHES entry a regex
+# some line must match (for lines with measured numbers in them). stdout and stderr are checked
+# together.
+# EXPECT_FILE, EXPECT_PNG, NO_FILE, LOG and STATUS are removed before the run, so a file left by an
+# earlier run cannot pass. Each EXPECT_FILE must exist after it; NO_FILE must not (a command that
+# fails leaves no output behind). Each EXPECT_PNG must be a PNG whose header says W x H. CHECK is a
+# command run after the run, when the files are there, and must exit 0 (tests/image_check looks
+# inside images).
 # SETUP is a script included first (it writes the test's content). Each EXPECT_LOG regex must match
 # some line of LOG (`player play --log`); EXPECT_STATUS keys are JSON paths into STATUS with '.'
 # (errors.0 is the first error), each value a regex the JSON value must match. RSS_FLAT=F:K: the
@@ -24,9 +31,19 @@ if(DEFINED SETUP)
   include(${SETUP})
 endif()
 string(REPLACE "|" ";" command "${COMMAND}")
-foreach(file EXPECT_FILE LOG STATUS)
-  if(DEFINED ${file})
-    file(REMOVE "${${file}}")
+string(REPLACE "|" ";" expect_files "${EXPECT_FILE}")
+string(REPLACE "|" ";" expect_pngs "${EXPECT_PNG}")
+set(pngs "")
+foreach(entry IN LISTS expect_pngs)
+  string(REGEX MATCH "^(.*):([0-9]+)x([0-9]+)$" ignored "${entry}")
+  if(NOT CMAKE_MATCH_COUNT EQUAL 3)
+    message(FATAL_ERROR "expect_output.cmake: EXPECT_PNG entry '${entry}': expected path:WxH")
+  endif()
+  list(APPEND pngs "${CMAKE_MATCH_1}")
+endforeach()
+foreach(file IN LISTS expect_files pngs NO_FILE LOG STATUS)
+  if(NOT file STREQUAL "")
+    file(REMOVE "${file}")
   endif()
 endforeach()
 execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
@@ -80,8 +97,61 @@ if(DEFINED EXPECT_LINES)
     endif()
   endforeach()
 endif()
-if(DEFINED EXPECT_FILE AND NOT EXISTS "${EXPECT_FILE}")
-  string(APPEND failures "expected the command to write ${EXPECT_FILE}\n")
+if(DEFINED EXPECT_MATCHES)
+  string(REPLACE "|" ";" wanted "${EXPECT_MATCHES}")
+  foreach(pattern IN LISTS wanted)
+    set(found FALSE)
+    foreach(line IN LISTS lines)
+      unmask(line)
+      if(line MATCHES "${pattern}")
+        set(found TRUE)
+        break()
+      endif()
+    endforeach()
+    if(NOT found)
+      string(APPEND failures "no line matches: ${pattern}\n")
+    endif()
+  endforeach()
+endif()
+if(DEFINED NO_FILE AND EXISTS "${NO_FILE}")
+  string(APPEND failures "expected the command not to write ${NO_FILE}\n")
+endif()
+foreach(file IN LISTS expect_files)
+  if(NOT EXISTS "${file}")
+    string(APPEND failures "expected the command to write ${file}\n")
+  endif()
+endforeach()
+# A PNG starts with its 8-byte signature, then the IHDR chunk: length 13, "IHDR", width, height
+# (4 bytes each, big-endian).
+foreach(entry IN LISTS expect_pngs)
+  string(REGEX MATCH "^(.*):([0-9]+)x([0-9]+)$" ignored "${entry}")
+  set(png "${CMAKE_MATCH_1}")
+  set(want "${CMAKE_MATCH_2}x${CMAKE_MATCH_3}")
+  if(NOT EXISTS "${png}")
+    string(APPEND failures "expected the command to write ${png}\n")
+    continue()
+  endif()
+  file(READ "${png}" header LIMIT 24 HEX)
+  string(LENGTH "${header}" header_length)
+  if(header_length LESS 48 OR NOT header MATCHES "^89504e470d0a1a0a0000000d49484452")
+    string(APPEND failures "${png}: expected a PNG (signature and IHDR chunk), got bytes '${header}'\n")
+    continue()
+  endif()
+  string(SUBSTRING "${header}" 32 8 width_hex)
+  string(SUBSTRING "${header}" 40 8 height_hex)
+  math(EXPR width "0x${width_hex}")
+  math(EXPR height "0x${height_hex}")
+  if(NOT "${width}x${height}" STREQUAL want)
+    string(APPEND failures "${png}: size: expected ${want}, got ${width}x${height}\n")
+  endif()
+endforeach()
+if(DEFINED CHECK)
+  string(REPLACE "|" ";" check_command "${CHECK}")
+  execute_process(COMMAND ${check_command} RESULT_VARIABLE check_rc OUTPUT_VARIABLE check_out ERROR_VARIABLE check_out)
+  message("${check_out}")
+  if(NOT check_rc STREQUAL "0")
+    string(APPEND failures "check ${CHECK}: exit code ${check_rc}:\n${check_out}")
+  endif()
 endif()
 if(DEFINED EXPECT_LOG)
   file(STRINGS "${LOG}" log_lines)

@@ -10,12 +10,15 @@
 #include <fstream>
 
 #include "camera_schedule.h"
+#include "colour_bars.h"
 #include "gpio_devices.h"
 #include "hal/devices.h"
 #include "hal/mock.h"
 
 namespace hal {
 namespace {
+
+using std::chrono::milliseconds;
 
 TEST(LinuxGpio, MissingChipIsNamedAndTheOtherButtonsStillWork) {
   MonotonicClock clock;
@@ -41,18 +44,63 @@ TEST(LinuxGpio, MissingChipIsNamedAndTheOtherButtonsStillWork) {
 
 TEST(LinuxGpio, MissingLedIsNamedAndSettingItIsHarmless) {
   std::vector<std::string> problems;
-  std::vector<LedConfig> cfg(1);
+  std::vector<LedConfig> cfg(2);
   cfg[0].name = "status";
   cfg[0].line.chip = "/dev/gpiochip-missing";
   cfg[0].line.offset = 0;
+  cfg[1].name = "error";
+  cfg[1].line.line_name = "NO_SUCH_LED_LINE";
   auto leds = open_gpio_leds(cfg, "hal-test", problems);
-  ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("LED 'status': GPIO chip '/dev/gpiochip-missing'"), std::string::npos) << problems[0];
-  leds->set(0, true);
-  leds->set(5, true);
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_EQ(problems[0].rfind("LED 'status': GPIO chip '/dev/gpiochip-missing' for /dev/gpiochip-missing:0: cannot open", 0), 0u)
+      << problems[0];
+  EXPECT_EQ(problems[1].rfind("LED 'error': GPIO line NO_SUCH_LED_LINE: no chip has a line of that name", 0), 0u) << problems[1];
+  // Harmless: the LEDs were reported once, at start. Setting them (or one past the end) is not a
+  // run-time failure, which would log "LED disabled" and light the error LED on every pattern edge.
+  for (bool on : {true, false, true}) {
+    leds->set(0, on);
+    leds->set(1, on);
+    leds->set(5, on);
+  }
+  EXPECT_EQ(leds->last_error(), "");
+  // The player drives them through a Status: patterns and levels carry on as if the LEDs were there.
+  ManualClock clock;
+  Status status({"status", "error"}, std::move(leds), clock, "");
+  status.set_pattern(0, LedPattern::BlinkFast);
+  status.set_pattern(1, LedPattern::On);
+  EXPECT_TRUE(status.level(0));
+  clock.advance(milliseconds(100));
+  status.update();
+  EXPECT_FALSE(status.level(0));
+  EXPECT_TRUE(status.level(1));
+  EXPECT_EQ(status.led_error(), "");
 }
 
-using std::chrono::milliseconds;
+// One LED missing at start, the other present: the missing one is never written (its line was
+// never requested), the present one gets every level.
+class HalfMissingLeds final : public detail::OutputLeds {
+public:
+  HalfMissingLeds() : OutputLeds({"LED 'status' (GPIO line GPIO23)", "LED 'error' (GPIO line GPIO24)"}) { disable(0); }
+  std::vector<std::pair<std::size_t, bool>> writes;
+
+private:
+  int write(std::size_t led, bool on) override {
+    writes.push_back({led, on});
+    return 0;
+  }
+};
+
+TEST(LinuxGpio, MissingLedIsNeverWrittenAndTheOthersAre) {
+  HalfMissingLeds leds;
+  leds.set(0, true);
+  leds.set(1, true);
+  leds.set(0, false);
+  leds.set(1, false);
+  leds.set(2, true);
+  using Writes = std::vector<std::pair<std::size_t, bool>>;
+  EXPECT_EQ(leds.writes, (Writes{{1, true}, {1, false}}));
+  EXPECT_EQ(leds.last_error(), "");
+}
 
 bool readable(int fd) {
   pollfd p{fd, POLLIN, 0};
@@ -304,6 +352,14 @@ TEST(Hardware, VividCapture) {
     ASSERT_TRUE(cam->capture(frame, std::chrono::seconds(2))) << cam->last_error();
     EXPECT_EQ(frame.width, 640);
     EXPECT_EQ(frame.height, 480);
+    // vivid's default pattern, 75% colour bars (colour_bars.h). Tolerance 8 of 255: YUYV is 8-bit
+    // limited range, and vivid computes its Y'CbCr values with its own coefficients and rounding;
+    // our conversion of exact BT.601 values is off by at most 1 (ColourBars tests), the rest is
+    // margin for vivid's table. RGB24 arrives exact. A wrong bar is off by 64 or more in some
+    // channel (75% against 100%), so the margin hides no wrong colour.
+    const std::vector<std::string> mismatches = test::colour_bar_mismatches(frame, 8);
+    EXPECT_TRUE(mismatches.empty()) << (f == PixelFormat::Yuyv ? "YUYV" : "RGB24") << ": " << mismatches.size()
+                                    << " bars wrong, first: " << (mismatches.empty() ? "" : mismatches[0]);
   }
 }
 

@@ -1,10 +1,15 @@
 // LED pattern timing and the status file.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
 
 #include "hal/mock.h"
 #include "hal/status.h"
@@ -110,6 +115,76 @@ TEST(Status, ReportIsWrittenAtomicallyAsJson) {
   EXPECT_EQ(j["leds"]["status"], "heartbeat");
   // No temporaries left behind.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+}
+
+// Monitoring tools read the status file while the player rewrites it. Every read, however it falls
+// against the writes, must be one whole report: the old one or the new one, never empty or cut off.
+// The file lives on /run (a tmpfs) on the boards, so the test uses /dev/shm where it exists: there
+// fsync costs nothing and a write takes long enough against a read that a file rewritten in place
+// is caught torn on every run.
+TEST(Status, ConcurrentReaderNeverSeesAPartialFile) {
+  const std::string dir = (std::filesystem::is_directory("/dev/shm") ? std::string("/dev/shm") : std::string(HAL_TEST_OUTPUT_DIR)) +
+                          "/hal_status_atomic_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/status.json";
+  ManualClock clock;
+  Status status({"status"}, std::make_unique<RecordingLedSink>(clock, 1), clock, file);
+  // Two reports of very different lengths (about 30 KB and under 1 KB), told apart by their state,
+  // each with the error count it must have.
+  StatusReport big, small;
+  big.state = "big";
+  for (int i = 0; i < 300; ++i)
+    big.errors.push_back("camera: /dev/video0: cannot open camera: No such file or directory (try " + std::to_string(i) + ")");
+  small.state = "small";
+  small.errors = {"one"};
+  std::string err;
+  ASSERT_TRUE(status.write_report(small, &err)) << err;
+
+  constexpr int kWrites = 200;
+  std::atomic<bool> done{false};
+  std::atomic<int> writes_done{0};
+  std::string write_error;
+  std::thread writer([&] {
+    for (int i = 0; i < kWrites && write_error.empty(); ++i) {
+      std::string e;
+      if (!status.write_report(i % 2 == 0 ? big : small, &e)) write_error = e;
+      writes_done.store(i + 1);
+    }
+    done.store(true);
+  });
+  int reads = 0, reads_while_writing = 0, torn = 0;
+  std::string first_torn;
+  std::string text;
+  std::set<std::string> whole;
+  // Reads until the writer is done, and at least a few hundred times, so every run reads while writing.
+  while (!done.load() || reads < 200) {
+    const bool writing = !done.load() && writes_done.load() > 0;
+    std::ifstream in(file, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    ++reads;
+    reads_while_writing += writing ? 1 : 0;
+    // A text already parsed whole needs no second parse: the reads stay quick and close together,
+    // so they land inside the writes (a torn read is never added to `whole`).
+    if (whole.count(text) != 0) continue;
+    const auto j = nlohmann::json::parse(text, nullptr, false);
+    if (!j.is_discarded() && j.is_object() && j.contains("state") && j.contains("errors") &&
+        ((j["state"] == "big" && j["errors"].size() == 300u) || (j["state"] == "small" && j["errors"].size() == 1u))) {
+      whole.insert(text);
+      continue;
+    }
+    if (torn++ == 0)
+      first_torn = std::to_string(text.size()) + " bytes: '" + text.substr(0, 40) + "' ... '" +
+                   text.substr(text.size() > 40 ? text.size() - 40 : 0) + "'";
+  }
+  writer.join();
+  EXPECT_EQ(write_error, "");
+  EXPECT_EQ(writes_done.load(), kWrites);
+  EXPECT_GT(reads_while_writing, 0) << "the reader never overlapped the writer; the test proved nothing";
+  EXPECT_EQ(torn, 0) << torn << " of " << reads << " reads were not a whole report; the first: " << first_torn;
+  // No temporaries left behind, however many writes.
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Status, UnwritableStatusFileIsAnErrorNamingIt) {

@@ -32,7 +32,8 @@ std::vector<size_t> pareto_front(const std::vector<ChartPoint>& points) {
 
 bool write_chart(const std::string& path, const std::vector<ChartPoint>& points, const std::string& title,
                  const std::string& error_label, std::string& error) {
-  constexpr int kWidth = 1200, kHeight = 800, kLeft = 110, kRight = 40, kTop = 60, kBottom = 90;
+  constexpr int kWidth = kChartLayout.width, kHeight = kChartLayout.height, kLeft = kChartLayout.left,
+                kRight = kChartLayout.right, kTop = kChartLayout.top, kBottom = kChartLayout.bottom;
   OIIO::ImageBuf chart(OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::UINT8));
   OIIO::ImageBufAlgo::fill(chart, {1.0f, 1.0f, 1.0f});
   if (points.empty()) {
@@ -45,8 +46,8 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
     t_max = std::max(t_max, std::max(p.time_ms, 1e-3));
     e_max = std::max(e_max, p.error);
   }
-  const double log_min = std::log10(t_min) - 0.05, log_max = std::log10(t_max) + 0.05;
-  e_max = e_max > 0.0 ? e_max * 1.08 : 1.0;
+  const double log_min = std::log10(t_min) - kTimePadDecades, log_max = std::log10(t_max) + kTimePadDecades;
+  e_max = e_max > 0.0 ? e_max * kErrorHeadroom : 1.0;
   auto x_of = [&](double t) {
     return kLeft + static_cast<int>((std::log10(std::max(t, 1e-3)) - log_min) / (log_max - log_min) * (kWidth - kLeft - kRight));
   };
@@ -76,7 +77,8 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
   OIIO::ImageBufAlgo::render_text(chart, kWidth / 2 - 160, kHeight - 30, "AO time per frame, ms (log scale)", 20, kFont, axis);
   OIIO::ImageBufAlgo::render_text(chart, kLeft, 40, title + "   y: " + error_label, 20, kFont, axis);
 
-  const float dot[3] = {0.55f, 0.55f, 0.6f}, front[3] = {0.1f, 0.35f, 0.85f};
+  const auto& dot = kPointColour;
+  const auto& front = kFrontColour;
   for (const ChartPoint& p : points) OIIO::ImageBufAlgo::render_box(chart, x_of(p.time_ms) - 2, y_of(p.error) - 2,
                                                                       x_of(p.time_ms) + 2, y_of(p.error) + 2, dot, true);
   const std::vector<size_t> on_front = pareto_front(points);
@@ -87,7 +89,7 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
   for (size_t i : on_front)
     OIIO::ImageBufAlgo::render_box(chart, x_of(points[i].time_ms) - 4, y_of(points[i].error) - 4, x_of(points[i].time_ms) + 4,
                                    y_of(points[i].error) + 4, front, true);
-  const float marked[3] = {0.85f, 0.15f, 0.1f};
+  const auto& marked = kMarkColour;
   for (const ChartPoint& p : points) {
     if (p.mark.empty()) continue;
     const int x = x_of(p.time_ms), y = y_of(p.error);

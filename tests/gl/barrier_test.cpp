@@ -12,8 +12,10 @@
 //   - an image store waits for an earlier command's fetches of the same texture only after
 //     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT (write after read: the next frame's AO must not overwrite
 //     what the present pass is still reading).
-// Textures, not levels, are tracked: a command that samples a texture and stores into it reads
-// other levels than it writes (the depth chain), so it is not its own hazard.
+// Stores are tracked per mip level, fetches per texture: a fetch reads every level but those its
+// own command stores into (the depth chain samples level L - 1 of the texture whose level L it
+// writes). For the write-after-read rule a command that samples and stores one texture does not
+// count as sampling it, since which levels it reads is not known from the calls.
 #include "harness.h"
 
 #include <map>
@@ -27,16 +29,20 @@ constexpr int kSide = 64;
 
 struct ImageBinding {
   GLuint texture = 0;
+  GLint level = 0;
   GLenum access = GL_READ_ONLY;
 };
+
+using Level = std::pair<GLuint, GLint>;  // texture, mip level
 
 struct Record {
   std::map<GLuint, GLuint> samplers;      // unit -> texture
   std::map<GLuint, ImageBinding> images;  // image unit -> binding
-  std::set<GLuint> stored_unfetchable;    // image stores not yet visible to texture fetches
-  std::set<GLuint> stored_unloadable;     // ... nor to image loads
+  std::set<Level> stored_unfetchable;     // image stores not yet visible to texture fetches
+  std::set<Level> stored_unloadable;      // ... nor to image loads
   std::set<GLuint> fetched_unfenced;      // fetched by a command no image-access barrier followed yet
   int commands = 0;
+  int coarser_level_stores = 0;           // stores into a level > 0: the depth chain ran
   int barriers = 0;
   std::vector<std::string> hazards;
 
@@ -44,32 +50,38 @@ struct Record {
   void command(const char* what, const std::set<GLuint>& sampler_units, const std::set<GLuint>& image_units) {
     ++commands;
     const std::string where = std::string(what) + " #" + std::to_string(commands);
-    std::set<GLuint> fetched, loaded, stored;
+    std::set<GLuint> fetched, stored_textures;
+    std::set<Level> loaded, stored;
     for (GLuint unit : sampler_units)
       if (samplers[unit] != 0) fetched.insert(samplers[unit]);
     for (GLuint unit : image_units) {
       const ImageBinding& image = images[unit];
       if (image.texture == 0) continue;
-      if (image.access != GL_WRITE_ONLY) loaded.insert(image.texture);
-      if (image.access != GL_READ_ONLY) stored.insert(image.texture);
+      if (image.access != GL_WRITE_ONLY) loaded.insert({image.texture, image.level});
+      if (image.access != GL_READ_ONLY) {
+        stored.insert({image.texture, image.level});
+        stored_textures.insert(image.texture);
+      }
     }
-    for (GLuint texture : fetched)
-      if (!stored.count(texture) && stored_unfetchable.count(texture))
-        hazards.push_back(where + " samples texture " + std::to_string(texture) +
-                          " after image stores with no GL_TEXTURE_FETCH_BARRIER_BIT between");
-    for (GLuint texture : loaded)
-      if (stored_unloadable.count(texture))
-        hazards.push_back(where + " loads image " + std::to_string(texture) +
+    for (const Level& pending : stored_unfetchable)
+      if (fetched.count(pending.first) && !stored.count(pending))
+        hazards.push_back(where + " samples texture " + std::to_string(pending.first) + " (level " +
+                          std::to_string(pending.second) +
+                          " stored before) with no GL_TEXTURE_FETCH_BARRIER_BIT between");
+    for (const Level& level : loaded)
+      if (stored_unloadable.count(level))
+        hazards.push_back(where + " loads image " + std::to_string(level.first) +
                           " after image stores with no GL_SHADER_IMAGE_ACCESS_BARRIER_BIT between");
-    for (GLuint texture : stored)
+    for (GLuint texture : stored_textures)
       if (fetched_unfenced.count(texture))
         hazards.push_back(where + " stores into texture " + std::to_string(texture) +
                           " that an earlier command samples, with no GL_SHADER_IMAGE_ACCESS_BARRIER_BIT between");
     for (GLuint texture : fetched)
-      if (!stored.count(texture)) fetched_unfenced.insert(texture);
-    for (GLuint texture : stored) {
-      stored_unfetchable.insert(texture);
-      stored_unloadable.insert(texture);
+      if (!stored_textures.count(texture)) fetched_unfenced.insert(texture);
+    for (const Level& level : stored) {
+      stored_unfetchable.insert(level);
+      stored_unloadable.insert(level);
+      if (level.second > 0) ++coarser_level_stores;
     }
   }
 
@@ -146,7 +158,7 @@ void GL_APIENTRY bind_texture(GLenum target, GLuint texture) {
 }
 void GL_APIENTRY bind_image(GLuint unit, GLuint texture, GLint level, GLboolean layered, GLint layer, GLenum access,
                             GLenum format) {
-  record->images[unit] = {texture, access};
+  record->images[unit] = {texture, level, access};
   real.BindImageTexture(unit, texture, level, layered, layer, access, format);
 }
 void GL_APIENTRY dispatch(GLuint x, GLuint y, GLuint z) {
@@ -213,6 +225,8 @@ TEST_P(Barriers, EveryPassThatReadsAnotherPassesImageStoresWaitsForThem) {
     settings.blur.mode = c.blur;
     settings.ao_settings.half_resolution = c.half_resolution;
     settings.ao_settings.depth_chain = c.depth_chain;
+    // A radius as wide as the view reads the coarsest levels, so the chain is built when it is on.
+    settings.radius = c.depth_chain ? 10.0f : 0.0f;
     const std::string what = std::string("blur ") + std::string(ssao::name(c.blur)) +
                              (c.half_resolution ? ", half resolution" : ", full resolution") +
                              (c.depth_chain ? ", depth chain" : "");
@@ -232,6 +246,7 @@ TEST_P(Barriers, EveryPassThatReadsAnotherPassesImageStoresWaitsForThem) {
     // G-buffer draws, the SSAO dispatch and the present draw, and a barrier after each dispatch.
     EXPECT_GE(r.commands, 3 * 3) << what;
     EXPECT_GE(r.barriers, 3 * 2) << what;
+    if (c.depth_chain) EXPECT_GT(r.coarser_level_stores, 0) << what;
     for (const std::string& hazard : r.hazards) ADD_FAILURE() << what << ": " << hazard;
   }
 }
@@ -241,7 +256,7 @@ TEST_P(Barriers, EveryPassThatReadsAnotherPassesImageStoresWaitsForThem) {
 TEST(BarrierRules, EachHazardIsReportedAndTheRightBitClearsIt) {
   const GLuint ao = 7, blurred = 8;
   auto store = [](Record& r, GLuint texture) {
-    r.images[0] = {texture, GL_WRITE_ONLY};
+    r.images[0] = {texture, 0, GL_WRITE_ONLY};
     r.command("dispatch", {}, {0});
   };
   auto sample = [](Record& r, GLuint texture) {
@@ -272,7 +287,7 @@ TEST(BarrierRules, EachHazardIsReportedAndTheRightBitClearsIt) {
     Record r;  // read after write, loaded through an image unit
     store(r, ao);
     r.barrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    r.images[1] = {ao, GL_READ_ONLY};
+    r.images[1] = {ao, 0, GL_READ_ONLY};
     r.command("dispatch", {}, {1});
     EXPECT_EQ(r.hazards.size(), 1u);
   }
@@ -297,12 +312,24 @@ TEST(BarrierRules, EachHazardIsReportedAndTheRightBitClearsIt) {
     EXPECT_TRUE(r.hazards.empty());
   }
   {
-    Record r;  // sampling and storing one texture in one command reads other levels (the depth chain)
-    store(r, ao);
-    r.barrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    r.samplers[0] = ao;
-    r.command("dispatch", {0}, {0});
+    Record r;  // a chain of levels: each samples the texture and stores its next level
+    const GLuint depth = 9;
+    r.samplers[0] = depth;
+    for (GLint level = 1; level <= 3; ++level) {
+      r.images[0] = {depth, level, GL_WRITE_ONLY};
+      r.command("dispatch", {0}, {0});
+      r.barrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
     EXPECT_TRUE(r.hazards.empty());
+    EXPECT_EQ(r.coarser_level_stores, 3);
+    Record unfenced;  // the same chain with the barriers left out
+    unfenced.samplers[0] = depth;
+    for (GLint level = 1; level <= 3; ++level) {
+      unfenced.images[0] = {depth, level, GL_WRITE_ONLY};
+      unfenced.command("dispatch", {0}, {0});
+    }
+    // Level 2's dispatch samples level 1 unfenced; level 3's, levels 1 and 2.
+    EXPECT_EQ(unfenced.hazards.size(), 3u);
   }
 }
 

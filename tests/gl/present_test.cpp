@@ -20,6 +20,28 @@ scene::Camera camera_at(const Harness& h, double azimuth) {
   return scene::frame(h.scene.bounds, framing, h.renderer.settings().width, h.renderer.settings().height);
 }
 
+// The surface size is checked once, before any platform is tried: a platform would otherwise
+// fail in its own words (EGL_BAD_PARAMETER, an SDL message) or, worse, make a 0x0 surface.
+TEST(PlatformSize, AnEmptySurfaceIsRefusedWithTheSizeNamedOnEveryPlatform) {
+  for (const std::string& name : platform::names()) {
+    for (const platform::Size size : {platform::Size{0, 16}, platform::Size{16, 0}, platform::Size{-1, -1}}) {
+      platform::Options options;
+      options.name = name;
+      options.size = size;
+      std::string error;
+      EXPECT_EQ(platform::create(options, error), nullptr) << name;
+      EXPECT_EQ(error, "--size: " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                           " is not a surface size (expected positive width and height)")
+          << name;
+    }
+  }
+  platform::Options smallest;
+  smallest.name = "egl";
+  smallest.size = {1, 1};
+  std::string error;
+  EXPECT_NE(platform::create(smallest, error), nullptr) << error;
+}
+
 class Present : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Present, TwentyFramesOfAStillSceneAreBitIdentical) {

@@ -201,6 +201,60 @@ TEST(SettingsCodec, EveryKeyRoundTripsItsDefault) {
   EXPECT_EQ(settings.radius, 0.25f);  // a refused value changes nothing
 }
 
+// Every key at the edges of what it accepts: the values just inside are taken (and read back as
+// written), those just outside are refused with the message the player prints, and leave the
+// settings as they were. Written out here rather than derived from the codec's own table, so a
+// range that drifts from its documented choices fails.
+TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
+  struct Case {
+    const char* key;
+    std::vector<const char*> accepted, refused;
+    const char* expected;  // what the error says is expected
+  };
+  const std::vector<Case> cases = {
+      {"ao", {"on", "off"}, {"yes", "1", ""}, "on|off"},
+      {"estimator", {"sphere", "hemisphere", "horizon"}, {"ray", "Sphere"}, "sphere|hemisphere|horizon"},
+      {"precision", {"highp", "mediump"}, {"lowp", "fp16"}, "highp|mediump"},
+      {"samples", {"1", "64", "32"}, {"0", "65", "-1", "1.5", "8x", ""}, "1..64"},
+      {"radii", {"1", "5"}, {"0", "6", "2.0"}, "1..5"},
+      {"radius", {"0", "2.5", "1e-3"}, {"-0.001", "-1", "inf", "nan", "1e", "x"}, "a number >= 0"},
+      {"pattern", {"random", "jittered", "latin", "poisson"}, {"halton"}, "random|jittered|latin|poisson"},
+      {"blur", {"gaussian", "bilateral", "off"}, {"box", "on"}, "gaussian|bilateral|off"},
+      {"resolution", {"full", "half"}, {"quarter", "on"}, "full|half"},
+      {"depth-chain", {"on", "off"}, {"true"}, "on|off"},
+      {"skip-radii", {"on", "off"}, {"no"}, "on|off"},
+      {"skip-background", {"on", "off"}, {"0"}, "on|off"},
+      {"untextured-variant", {"on", "off"}, {"auto"}, "on|off"},
+      {"reuse-ao", {"on", "off"}, {"auto"}, "on|off"},
+      {"prepass", {"on", "off", "auto"}, {"maybe"}, "on|off|auto"},
+      {"view", {"color", "ao", "normal", "depth"}, {"colour"}, "color|ao|normal|depth"},
+  };
+  // Every key of the codec is covered.
+  std::vector<std::string> covered;
+  for (const Case& c : cases) covered.emplace_back(c.key);
+  for (const render::SettingKey& key : render::setting_keys())
+    EXPECT_NE(std::find(covered.begin(), covered.end(), key.key), covered.end()) << key.key << " has no case";
+  for (const Case& c : cases) {
+    for (const char* value : c.accepted) {
+      render::FrameSettings settings;
+      std::string error;
+      EXPECT_TRUE(render::apply_setting(settings, c.key, value, error)) << c.key << "=" << value << ": " << error;
+      if (std::string_view(c.key) != "radius")  // floats read back in their shortest form
+        EXPECT_EQ(render::setting_value(settings, c.key), value) << c.key;
+      EXPECT_TRUE(render::validate_setting(c.key, value, error)) << c.key << "=" << value;
+    }
+    for (const char* value : c.refused) {
+      render::FrameSettings settings;
+      const render::FrameSettings before;
+      std::string error;
+      EXPECT_FALSE(render::apply_setting(settings, c.key, value, error)) << c.key << "=" << value;
+      EXPECT_EQ(error, std::string(c.key) + ": expected " + c.expected + ", got '" + value + "'");
+      EXPECT_EQ(render::describe(settings, before), "") << c.key << "=" << value << " changed the settings";
+      EXPECT_FALSE(render::validate_setting(c.key, value, error)) << c.key << "=" << value;
+    }
+  }
+}
+
 TEST(AobenchConfigs, SweepsCoverTheGrid) {
   // quick: 3 estimators x 4 sample counts x 3 radii x 3 blurs x 2 scales, plus 4 patterns at the paper's point.
   EXPECT_EQ(aobench::sweep("quick").size(), 3u * 4 * 3 * 3 * 2 + 4);

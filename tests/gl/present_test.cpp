@@ -42,6 +42,29 @@ TEST(PlatformSize, AnEmptySurfaceIsRefusedWithTheSizeNamedOnEveryPlatform) {
   EXPECT_NE(platform::create(smallest, error), nullptr) << error;
 }
 
+class Surface : public ::testing::TestWithParam<std::string> {};
+
+// GL sets the first viewport to the drawable's size when the context is first made current, so it
+// tells the size of the surface the platform really made, not the one it reports.
+TEST_P(Surface, IsTheSizeAskedForAndReportsIt) {
+  for (const platform::Size size : {platform::Size{64, 48}, platform::Size{48, 64}, platform::Size{1, 97}}) {
+    platform::Options options;
+    options.name = GetParam();
+    options.size = size;
+    std::string error;
+    const auto surface = gl::open_context(options, error);
+    ASSERT_NE(surface, nullptr) << error;
+    GLint viewport[4] = {};
+    gl::api.GetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_EQ(viewport[2], size.width) << GetParam();
+    EXPECT_EQ(viewport[3], size.height) << GetParam();
+    EXPECT_EQ(surface->size().width, size.width);
+    EXPECT_EQ(surface->size().height, size.height);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Platforms, Surface, ::testing::Values("egl", "osmesa"), test::platform_name);
+
 class Present : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Present, TwentyFramesOfAStillSceneAreBitIdentical) {

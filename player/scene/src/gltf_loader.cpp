@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <png.h>
 #include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
 
@@ -472,11 +473,13 @@ std::string uri_problem(const json& root) {
   return {};
 }
 
-// --- Images through OpenImageIO ------------------------------------------------------------------
+// --- Images: PNG through libpng, JPEG through OpenImageIO ----------------------------------------
 // An image that cannot be used (not PNG or JPEG, corrupt, truncated, too large) does not stop the
 // scene: its texture is drawn white and the report says why, so a kiosk still shows the geometry.
-// Nothing from libpng or libjpeg reaches stderr: OpenImageIO routes their messages to its own
-// per-reader error, which is read and dropped here in favour of one warning of ours.
+// Nothing from the decoders reaches stderr: OpenImageIO's PNG reader lets libpng print "libpng
+// error: ..." itself, so PNG goes through libpng's simplified API, which keeps every message in
+// png_image::message; OpenImageIO's JPEG reader routes libjpeg's messages to its own error, which
+// is read and dropped. Either way the one line is ours.
 
 struct ImageContext {
   const LoadOptions* options = nullptr;
@@ -497,45 +500,67 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
   const bool png = bytes[0] == 0x89 && bytes[1] == 'P', jpeg = bytes[0] == 0xFF && bytes[1] == 0xD8;
   if (!png && !jpeg) return skip("expected PNG or JPEG data");
   const std::string kind = png ? "PNG" : "JPEG";
+  const std::string corrupt = "the " + kind + " data cannot be decoded (corrupt or truncated)";
+  // From the header alone: the size is checked before a single pixel is decoded or allocated.
+  auto size_problem = [&](uint64_t width, uint64_t height) -> std::string {
+    const uint64_t limit = static_cast<uint64_t>(context.options->max_texture_size);
+    const std::string dimensions = kind + " of " + std::to_string(width) + "x" + std::to_string(height);
+    if (width == 0 || height == 0 || width > limit || height > limit)
+      return dimensions + "; expected 1.." + std::to_string(limit) + " pixels per side";
+    const uint64_t decoded = width * height * 4;
+    if (decoded > context.options->image_budget_bytes)
+      return dimensions + " needs " + std::to_string(decoded >> 20) + " MiB decoded; expected at most " +
+             std::to_string(context.options->image_budget_bytes >> 20) + " MiB per image";
+    return {};
+  };
+  auto finish = [&](int width, int height, std::vector<unsigned char> pixels) {
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(pixels);
+    return true;
+  };
+  if (png) {
+    png_image decoder{};
+    decoder.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&decoder, bytes, static_cast<size_t>(size))) return skip(corrupt);
+    if (const std::string problem = size_problem(decoder.width, decoder.height); !problem.empty()) {
+      png_image_free(&decoder);
+      return skip(problem);
+    }
+    decoder.format = PNG_FORMAT_RGBA;  // grey, palette and 16-bit files all become 8-bit sRGB RGBA
+    std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(decoder));
+    const int width = static_cast<int>(decoder.width), height = static_cast<int>(decoder.height);
+    if (!png_image_finish_read(&decoder, nullptr, pixels.data(), 0, nullptr)) return skip(corrupt);
+    return finish(width, height, std::move(pixels));
+  }
   OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), static_cast<size_t>(size));
-  OIIO::ImageSpec config;
-  auto input = OIIO::ImageInput::open(png ? "image.png" : "image.jpg", &config, &memory);
+  auto input = OIIO::ImageInput::open("image.jpg", nullptr, &memory);
   if (!input) {
     (void)OIIO::geterror();  // clears the thread's message so it cannot surface later
-    return skip("the " + kind + " data cannot be decoded (corrupt or truncated)");
+    return skip(corrupt);
   }
-  // The header alone: the size is checked before a single pixel is decoded or allocated.
   const OIIO::ImageSpec& spec = input->spec();
-  const int limit = context.options->max_texture_size;
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > limit || spec.height > limit)
-    return skip(kind + " of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "; expected 1.." +
-                std::to_string(limit) + " per side");
-  const uint64_t decoded = uint64_t(spec.width) * uint64_t(spec.height) * 4;
-  if (decoded > context.options->image_budget_bytes)
-    return skip(kind + " of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " needs " +
-                std::to_string(decoded >> 20) + " MiB decoded; expected at most " +
-                std::to_string(context.options->image_budget_bytes >> 20) + " MiB per image");
-  std::vector<unsigned char> pixels(static_cast<size_t>(decoded), 255);
+  if (spec.width <= 0 || spec.height <= 0) return skip(corrupt);
+  if (const std::string problem = size_problem(uint64_t(spec.width), uint64_t(spec.height)); !problem.empty())
+    return skip(problem);
+  std::vector<unsigned char> pixels(size_t(spec.width) * size_t(spec.height) * 4, 255);
   const int channels = std::min(spec.nchannels, 4);
   const bool read = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data(), 4);
   const bool clean = !input->has_error();
   (void)input->geterror();
   (void)OIIO::geterror();
   // libjpeg decodes a truncated file to grey with only a warning: any message counts as a failure.
-  if (!read || !clean) return skip("the " + kind + " data cannot be decoded (corrupt or truncated)");
+  if (!read || !clean) return skip(corrupt);
   if (channels < 3) {  // grey (+ alpha): spread grey over RGB
     for (size_t p = 0; p < pixels.size(); p += 4) {
       if (channels == 2) pixels[p + 3] = pixels[p + 1];
       pixels[p + 1] = pixels[p + 2] = pixels[p];
     }
   }
-  image->width = spec.width;
-  image->height = spec.height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image = std::move(pixels);
-  return true;
+  return finish(spec.width, spec.height, std::move(pixels));
 }
 
 // --- Accessors -------------------------------------------------------------------------------------
@@ -996,7 +1021,7 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
   json root;
   try {
     root = json::parse(glb.json);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     std::string what = e.what();
     if (const size_t at = what.find("] "); at != std::string::npos) what.erase(0, at + 2);  // "[json.exception...] "
     return refuse("not a valid glTF 2.0 file: " + what);

@@ -299,7 +299,7 @@ TEST_F(GltfLoader, TruncatedBinaryFileIsAClearError) {
   const fs::path path = dir_ / "scene" / "truncated.glb";
   std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   const std::string error = error_of(path);
-  EXPECT_NE(error.find(": GLB header length " + std::to_string(bytes.size()) + " differs from the file's " +
+  EXPECT_NE(error.find(": not a valid glTF 2.0 file: GLB header length " + std::to_string(bytes.size()) + " differs from the file's " +
                        std::to_string(bytes.size() / 2) + " bytes"),
             std::string::npos)
       << error;
@@ -485,13 +485,13 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"points-only.gltf", {"meshes: the scene contains no triangles to render"}},
     {"no-scenes.gltf", {"scenes: the file has no scene with nodes to show"}},
     {"empty-scene.gltf", {"scenes: the file has no scene with nodes to show"}},
-    {"empty.glb", {"the file is empty (0 bytes); expected glTF 2.0 binary"}},
+    {"empty.glb", {"not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 binary"}},
     {"negative-byteoffset.gltf", {"bufferViews[0].byteOffset: -4 is out of range; expected an integer from 0 to " + kSafe}},
     {"version-1.0.gltf", {"asset.version: \"1.0\" is not glTF 2; expected \"2.0\" (or another 2.x)"}},
     {"min-version-2.1.gltf", {"asset.minVersion: \"2.1\" asks for more than this player reads; expected \"2.0\""}},
     {"version-missing.gltf", {"asset.version: missing; expected \"2.0\""}},
-    {"json-nested-200000.gltf", {"JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
-    {"json-nested-200000.glb", {"JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"json-nested-200000.gltf", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"json-nested-200000.glb", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
     {"utf8-bom.gltf", {"", {"the JSON starts with a UTF-8 byte-order mark, which glTF forbids; ignored"}}},
     {"stride-below-element.gltf",
      {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): bufferViews[0].byteStride 8 is smaller than an "
@@ -568,16 +568,16 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"texture-png-garbage.gltf", {"", {"images[0]: the PNG data cannot be decoded (corrupt or truncated)" + kDrawnWhite}}},
     {"texture-jpeg-truncated.gltf", {"", {"images[0]: the JPEG data cannot be decoded (corrupt or truncated)" + kDrawnWhite}}},
     {"texture-not-png-or-jpeg.gltf", {"", {"images[0]: expected PNG or JPEG data" + kDrawnWhite}}},
-    {"glb-header-only.glb", {"the file is 8 bytes; expected a 12-byte GLB header and a JSON chunk"}},
-    {"glb-bad-magic.glb", {"bytes 0..3 are not the GLB magic 'glTF'"}},
-    {"glb-version-1.glb", {"GLB header version 1; expected 2"}},
-    {"glb-length-mismatch.glb", {"GLB header length 4096 differs from the file's 556 bytes"}},
-    {"glb-json-chunk-past-end.glb", {"GLB chunk 0 at byte 12: length 556 runs past the end of the file (536 bytes left)"}},
+    {"glb-header-only.glb", {"not a valid glTF 2.0 file: the file is 8 bytes; expected a 12-byte GLB header and a JSON chunk"}},
+    {"glb-bad-magic.glb", {"not a valid glTF 2.0 file: bytes 0..3 are not the GLB magic 'glTF'"}},
+    {"glb-version-1.glb", {"not a valid glTF 2.0 file: GLB header version 1; expected 2"}},
+    {"glb-length-mismatch.glb", {"not a valid glTF 2.0 file: GLB header length 4096 differs from the file's 556 bytes"}},
+    {"glb-json-chunk-past-end.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: length 556 runs past the end of the file (536 bytes left)"}},
     {"glb-bin-chunk-past-end.glb",
-     {"GLB chunk 1 at byte 504: length 65536 runs past the end of the file (44 bytes left)"}},
-    {"glb-first-chunk-bin.glb", {"GLB chunk 0 at byte 12: type 0x004E4942; expected JSON (0x4E4F534A) first"}},
-    {"glb-two-json-chunks.glb", {"GLB chunk 1 at byte 504: a second JSON chunk; expected one"}},
-    {"glb-truncated-bin.glb", {"GLB chunk 1 at byte 504: length 44 runs past the end of the file (36 bytes left)"}},
+     {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 65536 runs past the end of the file (44 bytes left)"}},
+    {"glb-first-chunk-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: type 0x004E4942; expected JSON (0x4E4F534A) first"}},
+    {"glb-two-json-chunks.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: a second JSON chunk; expected one"}},
+    {"glb-truncated-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 44 runs past the end of the file (36 bytes left)"}},
 };
 
 class GltfCorpus : public ::testing::TestWithParam<corpus::Case> {

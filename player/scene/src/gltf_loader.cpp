@@ -1004,10 +1004,13 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     if (!in) return refuse("cannot open the file");
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  if (bytes.empty()) return refuse("the file is empty (0 bytes); expected glTF 2.0 " + std::string(binary ? "binary" : "JSON"));
+  if (bytes.empty()) return refuse("not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 " + std::string(binary ? "binary" : "JSON"));
   Glb glb;
   if (binary) {
-    if (const std::string problem = split_glb(bytes, glb, report.warnings); !problem.empty()) return refuse(problem);
+    // Layout and nesting problems keep the "not a valid glTF" of a parse error: the file is not
+    // glTF at all, rather than glTF with one field wrong.
+    if (const std::string problem = split_glb(bytes, glb, report.warnings); !problem.empty())
+      return refuse("not a valid glTF 2.0 file: " + problem);
   } else {
     glb.json = std::move(bytes);
   }
@@ -1017,7 +1020,8 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     glb.json.erase(0, 3);
     report.warnings.push_back("the JSON starts with a UTF-8 byte-order mark, which glTF forbids; ignored");
   }
-  if (const std::string problem = nesting_problem(glb.json); !problem.empty()) return refuse(problem);
+  if (const std::string problem = nesting_problem(glb.json); !problem.empty())
+    return refuse("not a valid glTF 2.0 file: " + problem);
   json root;
   try {
     root = json::parse(glb.json);

@@ -2,6 +2,8 @@
 // give one error naming the file and what is wrong, and leave the output untouched.
 #include "scene/gltf_loader.h"
 
+#include "corpus.h"
+
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <set>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace {
 namespace fs = std::filesystem;
@@ -291,7 +298,11 @@ TEST_F(GltfLoader, TruncatedBinaryFileIsAClearError) {
   ASSERT_GT(bytes.size(), 1000u);
   const fs::path path = dir_ / "scene" / "truncated.glb";
   std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-  EXPECT_NE(error_of(path).find("not a valid glTF"), std::string::npos);
+  const std::string error = error_of(path);
+  EXPECT_NE(error.find(": not a valid glTF 2.0 file: GLB header length " + std::to_string(bytes.size()) + " differs from the file's " +
+                       std::to_string(bytes.size() / 2) + " bytes"),
+            std::string::npos)
+      << error;
 }
 
 TEST_F(GltfLoader, NotJsonAtAllIsAClearError) {
@@ -336,7 +347,7 @@ TEST_F(GltfLoader, AccessorBoundsAreCheckedAtTheirLastByte) {
   doc = triangle();
   doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 2;
   error = error_of(write(doc));
-  EXPECT_NE(error.find("attributes.POSITION: accessor index 2 out of range (there are 2)"), std::string::npos) << error;
+  EXPECT_NE(error.find("attributes.POSITION: 2 is out of range; expected an index into accessors (there are 2)"), std::string::npos) << error;
 }
 
 TEST_F(GltfLoader, AccessorsBeyondTheirBufferViewAreRejected) {
@@ -346,10 +357,10 @@ TEST_F(GltfLoader, AccessorsBeyondTheirBufferViewAreRejected) {
   EXPECT_NE(error.find("needs 1200 bytes but its buffer view has 36"), std::string::npos) << error;
   doc = triangle();
   doc["bufferViews"][0]["byteLength"] = 100000;
-  EXPECT_NE(error_of(write(doc)).find("spans bytes"), std::string::npos);
+  EXPECT_NE(error_of(write(doc)).find("bufferViews[0]: bytes 0..100000 lie beyond buffers[0].byteLength 44"), std::string::npos);
   doc = triangle();
   doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
-  EXPECT_NE(error_of(write(doc)).find("accessor index 9 out of range"), std::string::npos);
+  EXPECT_NE(error_of(write(doc)).find("POSITION: 9 is out of range; expected an index into accessors"), std::string::npos);
 }
 
 TEST_F(GltfLoader, MissingBufferFileIsAClearError) {
@@ -415,6 +426,306 @@ TEST_F(GltfLoader, OverflowingTransformsAndWrongFileTypesAreRejected) {
   std::ofstream(dir_ / "scene" / "model.obj") << "v 0 0 0\n";
   EXPECT_NE(error_of(dir_ / "scene" / "model.obj").find("expected a .gltf or .glb file"), std::string::npos);
   EXPECT_NE(error_of(dir_ / "scene" / "absent.glb").find("no such file"), std::string::npos);
+}
+
+// --- The corpus (tests/gltf_corpus): one test per file, each with its exact verdict --------------
+
+struct Verdict {
+  std::string error;                  // empty: the file loads
+  std::vector<std::string> warnings = {};  // when it loads
+};
+
+const std::string kDrawnWhite = "; its texture is drawn white";
+const std::string kSafe = "9007199254740991";  // 2^53 - 1, the largest integer JSON keeps exactly
+
+// Why each verdict is what it is, where it is not plain "glTF says it is an error, and it concerns
+// data the player reads":
+// - morph-target-counts-differ: the player draws no morph targets (it reads no "targets"), so
+//   their accessors are checked only for their index; the validator's error concerns unread data.
+// - points-only, no-scenes, empty-scene: valid glTF, but nothing to show; a kiosk refuses with a
+//   line saying so rather than playing a black screen (lines and points next to triangles load,
+//   with a warning).
+// - utf8-bom: the spec forbids the BOM but lets readers ignore it; ignored with a warning.
+// - texture-*: a texture that cannot be used is drawn white with a warning; the geometry still plays.
+// - sparse-indices-out-of-range: sparse accessors are refused wherever the player reads one.
+const std::map<std::string, Verdict> kVerdicts = {
+    {"valid-triangle.gltf", {}},
+    {"valid-triangle.glb", {}},
+    {"valid-no-indices.gltf", {}},
+    {"valid-u8-indices.gltf", {}},
+    {"valid-u32-indices.gltf", {}},
+    {"valid-triangle-strip.gltf", {}},
+    {"valid-triangle-fan.gltf", {}},
+    {"valid-normals.gltf", {}},
+    {"valid-texcoords.gltf", {}},
+    {"valid-texcoords-normalized-ushort.gltf", {}},
+    {"valid-interleaved-stride-24.gltf", {}},
+    {"valid-stride-252.gltf", {}},
+    {"valid-texture-png-rgb.gltf", {}},
+    {"valid-texture-png-grey.gltf", {}},
+    {"valid-texture-png-rgba.gltf", {}},
+    {"valid-texture-jpeg.gltf", {}},
+    {"valid-image-in-bufferview.glb", {}},
+    {"valid-node-trs.gltf", {}},
+    {"valid-node-matrix.gltf", {}},
+    {"valid-two-scenes.gltf", {}},
+    {"valid-lines-and-triangles.gltf", {"", {"meshes[0].primitives[1]: mode 1 is not triangles; skipped"}}},
+    {"valid-version-2.1.gltf", {}},
+    {"valid-min-version-2.0.gltf", {}},
+    {"valid-morph-target.gltf", {}},
+    {"valid-glb-json-chunk-only.glb", {}},
+    {"valid-extras-nested-100.gltf", {}},
+    {"valid-unicode-names.gltf", {}},
+    {"valid-node-chain-100000.gltf", {}},
+    {"valid-5000-nodes-share-a-mesh.gltf", {}},
+    {"valid-two-primitives.gltf", {}},
+    {"valid-camera-node.gltf", {}},
+    {"valid-extensions-used.gltf", {}},
+    {"valid-glb-unknown-chunk.glb", {"", {"GLB chunk 2 at byte 556: unknown chunk type 0x5458454E; ignored"}}},
+    {"points-only.gltf", {"meshes: the scene contains no triangles to render"}},
+    {"no-scenes.gltf", {"scenes: the file has no scene with nodes to show"}},
+    {"empty-scene.gltf", {"scenes: the file has no scene with nodes to show"}},
+    {"empty.glb", {"not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 binary"}},
+    {"negative-byteoffset.gltf", {"bufferViews[0].byteOffset: -4 is out of range; expected an integer from 0 to " + kSafe}},
+    {"version-1.0.gltf", {"asset.version: \"1.0\" is not glTF 2; expected \"2.0\" (or another 2.x)"}},
+    {"min-version-2.1.gltf", {"asset.minVersion: \"2.1\" asks for more than this player reads; expected \"2.0\""}},
+    {"version-missing.gltf", {"asset.version: missing; expected \"2.0\""}},
+    {"json-nested-200000.gltf", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"json-nested-200000.glb", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"utf8-bom.gltf", {"", {"the JSON starts with a UTF-8 byte-order mark, which glTF forbids; ignored"}}},
+    {"stride-below-element.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): bufferViews[0].byteStride 8 is smaller than an "
+      "element of 12 bytes"}},
+    {"stride-above-252.gltf", {"bufferViews[0].byteStride: 256 is out of range; expected an integer from 4 to 252"}},
+    {"stride-not-multiple-of-4.gltf", {"bufferViews[0].byteStride: 14 is not a multiple of 4; expected 4, 8, .. 252"}},
+    {"position-type-vec2.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): expected 3 components per element, got 2"}},
+    {"position-componenttype-ushort.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): componentType 5123 is not allowed here; expected 5126"}},
+    {"indices-type-vec2.gltf", {"meshes[0].primitives[0].indices (accessors[1]): expected 1 components per element, got 2"}},
+    {"indices-float.gltf",
+     {"meshes[0].primitives[0].indices (accessors[2]): componentType 5126 is not allowed here; expected one of 5121, "
+      "5123, 5125"}},
+    {"attribute-counts-differ.gltf", {"meshes[0].primitives[0].attributes.TEXCOORD_0: count 2 differs from POSITION's 3"}},
+    {"unread-attribute-count-differs.gltf", {"meshes[0].primitives[0].attributes.COLOR_0: count 2 differs from POSITION's 3"}},
+    {"count-beyond-2^64.gltf",
+     {"accessors[0].count: 1.8446744073709552e+19 is not an integer; expected an integer from 1 to " + kSafe}},
+    {"accessor-offset-beyond-2^64.gltf",
+     {"accessors[0].byteOffset: 3.6893488147419103e+19 is not an integer; expected an integer from 0 to " + kSafe}},
+    {"bufferview-offset-beyond-2^64.gltf",
+     {"bufferViews[0].byteOffset: 1.8446744073709552e+19 is not an integer; expected an integer from 0 to " + kSafe}},
+    {"count-times-size-overflows.gltf",
+     {"accessors[0].count: 4611686018427387904 is out of range; expected an integer from 1 to " + kSafe}},
+    {"count-above-limit.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): count 1099511627776 exceeds the limit of 268435456 "
+      "elements"}},
+    {"count-float.gltf", {"accessors[0].count: 3.5 is not an integer; expected an integer from 1 to " + kSafe}},
+    {"count-string.gltf", {"accessors[0].count: \"3\" is not an integer; expected an integer from 1 to " + kSafe}},
+    {"count-zero.gltf", {"accessors[0].count: 0 is out of range; expected an integer from 1 to " + kSafe}},
+    {"accessor-beyond-bufferview.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): needs 48 bytes but its buffer view has 36"}},
+    {"bufferview-beyond-buffer.gltf", {"bufferViews[0]: bytes 0..1000 lie beyond buffers[0].byteLength 44"}},
+    {"accessor-unaligned.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): starts at byte 2 of its buffer; expected a multiple "
+      "of the component size 4"}},
+    {"index-beyond-vertex-count.gltf",
+     {"meshes[0].primitives[0].indices: element 2 is 7, expected less than the vertex count 3"}},
+    {"position-nan.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION: element 1 component 1 is nan, expected a finite number"}},
+    {"accessor-index-out-of-range.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION: 9 is out of range; expected an index into accessors (there are 2)"}},
+    {"sparse-indices-out-of-range.gltf",
+     {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): sparse accessors are not supported"}},
+    {"morph-target-counts-differ.gltf", {}},
+    {"mode-out-of-range.gltf", {"meshes[0].primitives[0].mode: 7 is out of range; expected an integer from 0 to 6"}},
+    {"scene-out-of-range.gltf", {"scene: 5 is out of range; expected an index into scenes (there are 1)"}},
+    {"scene-node-out-of-range.gltf", {"scenes[0].nodes[0]: 3 is out of range; expected an index into nodes (there are 1)"}},
+    {"node-mesh-out-of-range.gltf", {"nodes[0].mesh: 2 is out of range; expected an index into meshes (there are 1)"}},
+    {"sampler-out-of-range.gltf", {"textures[0].sampler: 4 is out of range; expected an index into samplers (there are 1)"}},
+    {"texture-source-out-of-range.gltf",
+     {"textures[0].source: 3 is out of range; expected an index into images (there are 1)"}},
+    {"material-texture-out-of-range.gltf",
+     {"materials[0].pbrMetallicRoughness.baseColorTexture.index: 2 is out of range; expected an index into textures "
+      "(there are 1)"}},
+    {"image-bufferview-out-of-range.gltf",
+     {"images[0].bufferView: 9 is out of range; expected an index into bufferViews (there are 3)"}},
+    {"sampler-filter-invalid.gltf", {"samplers[0].magFilter: 1234 is not allowed; expected one of 9728, 9729"}},
+    {"material-out-of-range.gltf",
+     {"meshes[0].primitives[0].material: 0 is out of range; expected an index into materials (there are 0)"}},
+    {"node-cycle.gltf", {"nodes[0].children: the node hierarchy has a cycle through this node"}},
+    {"node-own-child.gltf", {"nodes[0].children: the node hierarchy has a cycle through this node"}},
+    {"node-two-parents.gltf", {"nodes[2]: the node has more than one parent (glTF requires a tree)"}},
+    {"node-chain-100000-cycle.gltf", {"nodes[0].children: the node hierarchy has a cycle through this node"}},
+    {"node-scale-infinite.gltf", {"not a valid glTF 2.0 file: number overflow parsing '1e400'"}},
+    {"primitive-without-position.gltf", {"meshes[0].primitives[0].attributes: POSITION is required"}},
+    {"required-extension.gltf", {"extensionsRequired: 'KHR_draco_mesh_compression' is not supported by this player"}},
+    {"uri-escapes-folder.gltf", {"buffers[0].uri: '../outside.bin' escapes the scene's folder"}},
+    {"not-json.gltf",
+     {"not a valid glTF 2.0 file: parse error at line 1, column 45: syntax error while parsing value - unexpected end "
+      "of input; expected '[', '{', or a literal"}},
+    {"top-level-array.gltf", {"the top level: expected a JSON object"}},
+    {"texture-png-65535x65535.gltf", {"", {"images[0]: PNG of 65535x65535; expected 1..16384 pixels per side" + kDrawnWhite}}},
+    {"texture-png-garbage.gltf", {"", {"images[0]: the PNG data cannot be decoded (corrupt or truncated)" + kDrawnWhite}}},
+    {"texture-jpeg-truncated.gltf", {"", {"images[0]: the JPEG data cannot be decoded (corrupt or truncated)" + kDrawnWhite}}},
+    {"texture-not-png-or-jpeg.gltf", {"", {"images[0]: expected PNG or JPEG data" + kDrawnWhite}}},
+    {"glb-header-only.glb", {"not a valid glTF 2.0 file: the file is 8 bytes; expected a 12-byte GLB header and a JSON chunk"}},
+    {"glb-bad-magic.glb", {"not a valid glTF 2.0 file: bytes 0..3 are not the GLB magic 'glTF'"}},
+    {"glb-version-1.glb", {"not a valid glTF 2.0 file: GLB header version 1; expected 2"}},
+    {"glb-length-mismatch.glb", {"not a valid glTF 2.0 file: GLB header length 4096 differs from the file's 556 bytes"}},
+    {"glb-json-chunk-past-end.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: length 556 runs past the end of the file (536 bytes left)"}},
+    {"glb-bin-chunk-past-end.glb",
+     {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 65536 runs past the end of the file (44 bytes left)"}},
+    {"glb-first-chunk-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: type 0x004E4942; expected JSON (0x4E4F534A) first"}},
+    {"glb-two-json-chunks.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: a second JSON chunk; expected one"}},
+    {"glb-truncated-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 44 runs past the end of the file (36 bytes left)"}},
+};
+
+class GltfCorpus : public ::testing::TestWithParam<corpus::Case> {
+ protected:
+  void SetUp() override {
+    std::string name = GetParam().name;
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::temp_directory_path() / ("gltf_corpus_test_" + std::to_string(::getpid()) + "_" + name);
+    fs::create_directories(dir_);
+    path_ = dir_ / GetParam().name;
+    const std::string bytes = GetParam().make();
+    std::ofstream(path_, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_, path_;
+};
+
+// Everything written to stdout and stderr (the file descriptors, where libpng would print) while
+// `run` runs.
+template <typename F>
+std::string console_output(F run) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  char name[] = "/tmp/gltf_console_XXXXXX";
+  const int capture = ::mkstemp(name);
+  const int saved_out = ::dup(1), saved_err = ::dup(2);
+  ::dup2(capture, 1);
+  ::dup2(capture, 2);
+  run();
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::dup2(saved_out, 1);
+  ::dup2(saved_err, 2);
+  ::close(saved_out);
+  ::close(saved_err);
+  ::close(capture);
+  std::ifstream in(name, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ::unlink(name);
+  return text;
+}
+
+TEST_P(GltfCorpus, GivesItsVerdictAndPrintsNothing) {
+  const auto expected = kVerdicts.find(GetParam().name);
+  ASSERT_NE(expected, kVerdicts.end()) << GetParam().name << " has no verdict in kVerdicts";
+  scene::Scene out;
+  out.name = "untouched";
+  scene::LoadReport report;
+  bool loaded = false;
+  EXPECT_EQ(console_output([&] { loaded = scene::load_gltf(path_, out, report); }), "");
+  if (expected->second.error.empty()) {
+    ASSERT_TRUE(loaded) << report.error;
+    EXPECT_EQ(report.warnings, expected->second.warnings);
+    EXPECT_GT(out.triangle_count(), 0u);
+    EXPECT_TRUE(std::isfinite(out.bounds.radius()));
+  } else {
+    EXPECT_FALSE(loaded);
+    EXPECT_EQ(report.error, path_.string() + ": " + expected->second.error);
+    EXPECT_EQ(out.name, "untouched");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, GltfCorpus, ::testing::ValuesIn(corpus::cases()),
+                         [](const ::testing::TestParamInfo<corpus::Case>& case_info) {
+                           std::string name = case_info.param.name;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+TEST(GltfCorpusGenerator, IsDeterministicWithUniqueNamesAndEnoughFilesForAValidatorComparison) {
+  std::set<std::string> names;
+  size_t valid = 0;
+  for (const corpus::Case& c : corpus::cases()) {
+    EXPECT_TRUE(names.insert(c.name).second) << c.name;
+    EXPECT_EQ(c.make(), c.make()) << c.name;
+    valid += c.valid;
+  }
+  EXPECT_GE(corpus::cases().size(), 60u);
+  EXPECT_GE(valid, 20u);
+  EXPECT_EQ(kVerdicts.size(), corpus::cases().size()) << "every verdict names a file the corpus writes";
+}
+
+// What the loaded files hold, beyond loading: where the content is the point of the class.
+class GltfCorpusContent : public ::testing::Test {
+ protected:
+  scene::Scene load(const std::string& name, scene::LoadReport* report_out = nullptr) {
+    dir_ = fs::temp_directory_path() / ("gltf_corpus_content_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const std::string bytes = corpus::bytes_of(name);
+    std::ofstream(dir_ / name, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    scene::Scene out;
+    scene::LoadReport report;
+    EXPECT_TRUE(scene::load_gltf(dir_ / name, out, report)) << report.error;
+    if (report_out) *report_out = report;
+    return out;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(GltfCorpusContent, A100000DeepChainAddsUpItsTranslations) {
+  const scene::Scene chain = load("valid-node-chain-100000.gltf");
+  ASSERT_EQ(chain.instances.size(), 1u);
+  // 100,000 steps of 1e-4: the triangle's x range [0, 1] moves to [10, 11].
+  EXPECT_NEAR(chain.bounds.min.x, 10.0, 1e-6);
+  EXPECT_NEAR(chain.bounds.max.x, 11.0, 1e-6);
+}
+
+TEST_F(GltfCorpusContent, FiveThousandNodesShareOneConvertedMesh) {
+  const scene::Scene shared = load("valid-5000-nodes-share-a-mesh.gltf");
+  EXPECT_EQ(shared.meshes.size(), 1u);
+  EXPECT_EQ(shared.instances.size(), 5000u);
+  for (const scene::Instance& instance : shared.instances) ASSERT_EQ(instance.mesh, 0);
+}
+
+TEST_F(GltfCorpusContent, UnusableTexturesAreOneWhitePixel) {
+  for (const char* name : {"texture-png-65535x65535.gltf", "texture-png-garbage.gltf", "texture-jpeg-truncated.gltf"}) {
+    const scene::Scene loaded = load(name);
+    ASSERT_EQ(loaded.textures.size(), 1u) << name;
+    EXPECT_EQ(loaded.textures[0].width, 1) << name;
+    EXPECT_EQ(loaded.textures[0].rgba, (std::vector<uint8_t>{255, 255, 255, 255})) << name;
+    EXPECT_EQ(loaded.materials.at(static_cast<size_t>(loaded.meshes.at(0).material)).base_color_texture, 0) << name;
+  }
+  // The same files decode where they are well formed: the white comes from the damage alone.
+  EXPECT_EQ(load("valid-texture-jpeg.gltf").textures.at(0).width, 8);
+  const scene::Scene png = load("valid-texture-png-grey.gltf");
+  EXPECT_EQ(png.textures.at(0).width, 4);
+  EXPECT_EQ(png.textures.at(0).rgba.size(), 4u * 4u * 4u);
+}
+
+TEST_F(GltfCorpusContent, ImagesAboveTheCallersLimitsAreDrawnWhite) {
+  dir_ = fs::temp_directory_path() / ("gltf_corpus_content_" + std::to_string(::getpid()));
+  fs::create_directories(dir_);
+  const std::string bytes = corpus::bytes_of("valid-texture-png-rgb.gltf");
+  std::ofstream(dir_ / "t.gltf", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  scene::Scene out;
+  scene::LoadReport report;
+  scene::LoadOptions small;
+  small.max_texture_size = 3;  // the PNG is 4x4
+  ASSERT_TRUE(scene::load_gltf(dir_ / "t.gltf", out, report, small)) << report.error;
+  EXPECT_EQ(report.warnings, (std::vector<std::string>{"images[0]: PNG of 4x4; expected 1..3 pixels per side" + kDrawnWhite}));
+  scene::LoadOptions tight;
+  tight.image_budget_bytes = 63;  // 4 x 4 x 4 bytes is 64
+  ASSERT_TRUE(scene::load_gltf(dir_ / "t.gltf", out, report, tight)) << report.error;
+  EXPECT_EQ(report.warnings,
+            (std::vector<std::string>{"images[0]: PNG of 4x4 needs 0 MiB decoded; expected at most 0 MiB per image" + kDrawnWhite}));
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ namespace {
 constexpr std::string_view kBuiltinPrefix = "builtin:";
 }  // namespace
 
-bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log) {
+bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log, const LoadOptions& options) {
   if (spec.rfind(kBuiltinPrefix, 0) == 0) {
     const std::string name = spec.substr(kBuiltinPrefix.size());
     if (auto built = make_builtin(name)) {
@@ -24,7 +24,7 @@ bool load(const std::string& spec, Scene& out, std::string& error, std::ostream&
     return false;
   }
   LoadReport report;
-  if (!load_gltf(spec, out, report)) {
+  if (!load_gltf(spec, out, report, options)) {
     error = report.error;
     return false;
   }

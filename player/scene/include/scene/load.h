@@ -1,5 +1,6 @@
 #pragma once
 // One entry point for every scene the player can show: "builtin:NAME" or a .gltf/.glb path.
+#include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
 #include <iosfwd>
@@ -9,6 +10,6 @@ namespace scene {
 
 // Returns false and says why in `error` (the file, the field and what was expected); loader
 // warnings (skipped primitives and the like) go to `log`.
-bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log);
+bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log, const LoadOptions& options = {});
 
 }  // namespace scene

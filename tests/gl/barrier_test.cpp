@@ -246,7 +246,9 @@ TEST_P(Barriers, EveryPassThatReadsAnotherPassesImageStoresWaitsForThem) {
     // G-buffer draws, the SSAO dispatch and the present draw, and a barrier after each dispatch.
     EXPECT_GE(r.commands, 3 * 3) << what;
     EXPECT_GE(r.barriers, 3 * 2) << what;
-    if (c.depth_chain) EXPECT_GT(r.coarser_level_stores, 0) << what;
+    if (c.depth_chain) {
+      EXPECT_GT(r.coarser_level_stores, 0) << what;
+    }
     for (const std::string& hazard : r.hazards) ADD_FAILURE() << what << ": " << hazard;
   }
 }

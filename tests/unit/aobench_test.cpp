@@ -239,8 +239,9 @@ TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
       render::FrameSettings settings;
       std::string error;
       EXPECT_TRUE(render::apply_setting(settings, c.key, value, error)) << c.key << "=" << value << ": " << error;
-      if (std::string_view(c.key) != "radius")  // floats read back in their shortest form
+      if (std::string_view(c.key) != "radius") {  // floats read back in their shortest form
         EXPECT_EQ(render::setting_value(settings, c.key), value) << c.key;
+      }
       EXPECT_TRUE(render::validate_setting(c.key, value, error)) << c.key << "=" << value;
     }
     for (const char* value : c.refused) {

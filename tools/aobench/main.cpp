@@ -265,10 +265,9 @@ int main(int argc, char** argv) {
         row.own = aoref::compare(ao_image(estimate, width, height, false),
                                  is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
         row.near_field = aoref::compare(ao_image(estimate, width, height, is_sphere), near_field.ao, depth);
-        const auto& s = config.settings;
         csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"";
         for (const char* key : kCsvSettings) csv << ',' << render::setting_value(config.settings, key);
-        csv            << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
+        csv << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
             << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << "\n";
         rows.push_back(row);
         progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));

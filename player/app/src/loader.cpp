@@ -25,7 +25,7 @@ Loader::~Loader() {
 void Loader::load_scene(const std::string& spec) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::scene, spec, nullptr, nullptr, {}});
+    jobs_.push_back({Result::Kind::scene, spec, nullptr, nullptr, {}, {}});
   }
   work_.notify_one();
 }
@@ -33,7 +33,7 @@ void Loader::load_scene(const std::string& spec) {
 void Loader::load_playlist(const std::string& path) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, {}});
+    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, {}, {}});
   }
   work_.notify_one();
 }
@@ -70,8 +70,12 @@ void Loader::run() {
     }
     if (job.kind == Result::Kind::scene) {
       auto scene = std::make_shared<scene::Scene>();
-      std::ostringstream log;  // loader warnings are not errors; the item plays
+      std::ostringstream log;  // warnings are not errors: the item plays, and the status says them
       if (scene::load(job.path, *scene, job.error, log)) job.scene = std::move(scene);
+      std::istringstream lines(log.str());
+      constexpr std::string_view kPrefix = "warning: ";
+      for (std::string line; std::getline(lines, line);)
+        job.warnings.push_back(line.rfind(kPrefix, 0) == 0 ? line.substr(kPrefix.size()) : line);
     } else {
       auto playlist = std::make_shared<playback::Playlist>();
       if (playback::load_playlist(job.path, playlist_options_, *playlist, job.error)) job.playlist = std::move(playlist);

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace app {
 
@@ -23,6 +24,7 @@ class Loader {
     std::shared_ptr<const scene::Scene> scene;
     std::shared_ptr<const playback::Playlist> playlist;
     std::string error;  // empty on success
+    std::vector<std::string> warnings;  // "spec: what" for what loaded anyway (a texture drawn white)
   };
 
   explicit Loader(playback::ParseOptions playlist_options);

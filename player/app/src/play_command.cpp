@@ -81,6 +81,7 @@ struct Loaded {
   std::unique_ptr<render::SceneGpu> incoming;
   scene::Bounds incoming_bounds;
   std::string error;  // failed to load: the item is skipped
+  std::vector<std::string> warnings;  // loaded anyway (a texture drawn white): in the status while it plays
   bool requested = false;
 };
 
@@ -428,6 +429,8 @@ void Player::handle_loader() {
       continue;
     }
     loaded.error.clear();
+    loaded.warnings = std::move(result.warnings);
+    for (const std::string& warning : loaded.warnings) err_ << "warning: " << warning << "\n";
     for (size_t i = 0; i < playlist_->items.size(); ++i)
       if (playlist_->items[i].scene == result.path) timeline_->set_playable(static_cast<int>(i), true);
     loaded.incoming = std::make_unique<render::SceneGpu>();
@@ -723,7 +726,9 @@ bool Player::scene_settled(int item) const {
 void Player::set_leds() {
   // A warning holds while a condition lasts (a camera lost) and for a minute after an error.
   constexpr double kErrorShownFor = 60.0;
-  const bool warning = camera_lost_ || !devices_.problems.empty() ||
+  const bool content_warning = std::any_of(scenes_.begin(), scenes_.end(),
+                                           [](const auto& entry) { return !entry.second.warnings.empty(); });
+  const bool warning = camera_lost_ || !devices_.problems.empty() || content_warning ||
                        (!errors_.empty() && now_seconds() - last_error_s_ < kErrorShownFor);
   const LedPlan plan = led_plan(state_, warning, last_check_ && !last_check_->passed);
   if (status_led_ && devices_.status->pattern(*status_led_) != plan.status) devices_.status->set_pattern(*status_led_, plan.status);
@@ -756,6 +761,8 @@ void Player::update_status(bool force) {
   report.errors = errors_;
   report.warnings = devices_.problems;  // devices missing since start: the player goes on without them
   if (camera_lost_) report.warnings.push_back("camera: " + devices_.camera->last_error());
+  for (const auto& [spec, loaded] : scenes_)
+    report.warnings.insert(report.warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
   report.self_check = last_check_;
   std::string error;
   if (!devices_.status->write_report(report, &error) && error != last_status_error_) {

@@ -8,6 +8,12 @@
 
 namespace hal {
 
+namespace {
+// Steps are kept in Nanos and added to the clock's start, so a time must stay far from Nanos' limit
+// (292 years); a century is past any test and any kiosk's uptime.
+constexpr long long kMaxScriptMs = 100LL * 365 * 24 * 3600 * 1000;
+}  // namespace
+
 std::vector<ScriptStep> parse_button_script(const std::string& text, const std::string& source_name) {
   std::vector<ScriptStep> steps;
   std::istringstream in(text);
@@ -25,6 +31,9 @@ std::vector<ScriptStep> parse_button_script(const std::string& text, const std::
     const auto [end, ec] = std::from_chars(ms_text.data(), ms_text.data() + ms_text.size(), ms);
     if (ec != std::errc() || end != ms_text.data() + ms_text.size() || ms < 0)
       throw ConfigError(where + "time: expected non-negative milliseconds, got '" + ms_text + "'");
+    if (ms > kMaxScriptMs)
+      throw ConfigError(where + "time: expected at most " + std::to_string(kMaxScriptMs) + " milliseconds (100 years), got " +
+                        ms_text);
     if (ms < last_ms) throw ConfigError(where + "time: expected times that do not decrease, got " + ms_text +
                                         " after " + std::to_string(last_ms));
     if (!(fields >> name)) throw ConfigError(where + "button: expected a button name after the time");

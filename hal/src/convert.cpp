@@ -32,7 +32,12 @@ void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int s
       yuv_to_rgb(row[0], row[1], row[3], dst);
       yuv_to_rgb(row[2], row[1], row[3], dst + 3);
     }
-    if (width % 2 == 1) yuv_to_rgb(row[0], row[1], row[3], dst);
+    // An odd width leaves a last pixel with only its Y and U inside the row (width * 2 bytes may be
+    // all the stride there is): it takes its left neighbour's chroma, or none in a 1-pixel row.
+    if (width % 2 == 1) {
+      if (width > 1) yuv_to_rgb(row[0], row[-3], row[-1], dst);
+      else yuv_to_rgb(row[0], 128, 128, dst);
+    }
   }
 }
 

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "hal/board.h"
@@ -201,6 +203,24 @@ TEST(Buttons, ScriptErrorsNameFileLineAndField) {
             "buttons.script:2: time: expected times that do not decrease, got 50 after 100");
   ManualClock clock;
   EXPECT_THROW(MockButtons({{"play", {}}}, parse_button_script("1 stop press\n", "s"), clock), ConfigError);
+}
+
+// Found by tests/fuzz (button_script): a time near long long's limit overflowed the conversion to
+// nanoseconds (UB) instead of being refused.
+TEST(Buttons, ScriptTimeBeyondWhatTheClockHoldsIsRefused) {
+  const std::string path = std::string(HAL_SOURCE_DIR) + "/tests/fuzz/regressions/button_script/time_beyond_nanoseconds.script";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    parse_button_script(text.str(), "time_beyond_nanoseconds.script");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "time_beyond_nanoseconds.script:2: time: expected at most 3153600000000 milliseconds (100 years), "
+                           "got 9223372036854775807");
+  }
+  EXPECT_EQ(parse_button_script("3153600000000 play press\n", "s").back().at, std::chrono::milliseconds(3153600000000));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 #include "hal/convert.h"
 
@@ -45,6 +47,35 @@ TEST(Convert, YuyvUsesEachPixelsOwnLumaAndRespectsStride) {
   EXPECT_EQ(out.at(1, 0)[1], 255);
   EXPECT_EQ(out.at(0, 1)[1], 255);
   EXPECT_EQ(out.at(1, 1)[1], 0);
+}
+
+// Found by tests/fuzz (yuyv): with an odd width and bytesperline = width * 2 (what the camera
+// raises a smaller one to), the last pixel read the V byte past the end of the frame. The file is
+// the fuzz target's input: 5 bytes of format (3 x 3, bytesperline 0), then the frame.
+TEST(Convert, YuyvOddWidthLastPixelStaysInsideTheRowAndTakesItsNeighboursChroma) {
+  const std::string path = std::string(HAL_SOURCE_DIR) + "/tests/fuzz/regressions/yuyv/odd_width_tight_stride.yuyv";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path;
+  const std::vector<std::uint8_t> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const int width = 3, height = 3, stride = 6;
+  ASSERT_EQ(file.size(), 5u + stride * height);
+  // Exactly the frame's bytes on the heap, so ASan (asan preset) flags a read past its end.
+  const std::vector<std::uint8_t> frame(file.begin() + 5, file.end());
+  RgbImage out(width, height);
+  yuyv_to_rgb(frame, width, height, stride, out);
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* row = frame.data() + y * stride;
+    const std::uint8_t pair[4] = {row[4], row[1], row[4], row[3]};  // Y2 with the first pair's U and V
+    RgbImage expected(2, 1);
+    yuyv_to_rgb(pair, 2, 1, 4, expected);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(out.at(2, y)[c], expected.at(0, 0)[c]) << "row " << y << " channel " << c;
+  }
+  RgbImage one(1, 1);
+  const std::vector<std::uint8_t> single = {235, 16};  // Y, U: a 1-pixel row has no V, so no chroma
+  yuyv_to_rgb(single, 1, 1, 2, one);
+  EXPECT_EQ(one.at(0, 0)[0], 255);
+  EXPECT_EQ(one.at(0, 0)[1], 255);
+  EXPECT_EQ(one.at(0, 0)[2], 255);
 }
 
 std::vector<std::uint8_t> encode_jpeg(const RgbImage& img) {

@@ -12,7 +12,8 @@
 
 namespace hal {
 
-// `stride` is bytes per source row (V4L2's bytesperline). `out` must already be width x height.
+// `stride` is bytes per source row (V4L2's bytesperline), at least width * 2; `src` holds at least
+// stride * height bytes. `out` must already be width x height.
 void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int stride, RgbImage& out);
 
 class MjpegDecoder {

@@ -1,5 +1,6 @@
 #include "app/play_command.h"
 #include "app/render_command.h"
+#include "camera_script.h"
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -107,33 +108,14 @@ class FrameStats {
 
 bool is_playlist(const std::string& path) { return fs::path(path).extension() == ".toml"; }
 
-// `t_ms unplug|replug` a line, '#' comments, times not decreasing: what a test does to the mock camera.
-struct CameraStep {
-  double at_s;
-  bool plugged;
-};
 bool parse_camera_script(const std::string& path, std::vector<CameraStep>& out, std::string& error) {
   std::ifstream in(path);
   if (!in) {
     error = path + ": cannot open camera script";
     return false;
   }
-  std::string line;
-  double last = 0.0;
-  for (int number = 1; std::getline(in, line); ++number) {
-    line = line.substr(0, line.find('#'));
-    std::istringstream words(line);
-    double ms = 0.0;
-    std::string what;
-    if (!(words >> ms)) continue;  // blank or comment
-    if (!(words >> what) || (what != "unplug" && what != "replug") || ms < last) {
-      error = path + ":" + std::to_string(number) + ": expected `t_ms unplug|replug` with times not decreasing";
-      return false;
-    }
-    last = ms;
-    out.push_back({ms / 1000.0, what == "replug"});
-  }
-  return true;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_camera_script_text(text, path, out, error);
 }
 
 // Resident memory in KiB, from /proc/self/statm (only read when logging).

@@ -1,4 +1,5 @@
 // The player's command line: a thin layer over the app library.
+#include "app/check_command.h"
 #include "app/play_command.h"
 #include "app/render_command.h"
 #include "hal/hal_test.h"
@@ -84,6 +85,10 @@ int main(int argc, char** argv) {
   hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
 
+  std::vector<std::string> check_scenes;
+  auto* check_cmd = cli.add_subcommand("check", "Load scenes as play does, without GL, and say for each whether it plays (exit 1 if any is refused)");
+  check_cmd->add_option("scenes", check_scenes, "Scenes to check (.gltf, .glb, builtin:NAME)")->required();
+
   app::PlayOptions play;
   std::string play_size = "1024x768";
   auto* play_cmd = cli.add_subcommand("play", "Play a playlist (TOML) or scenes in a loop, kiosk style, until stopped (the default command)");
@@ -147,5 +152,6 @@ int main(int argc, char** argv) {
     return app::run_render(render, std::cout, std::cerr);
   }
   if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);
+  if (check_cmd->parsed()) return app::run_check(check_scenes, std::cout, std::cerr);
   return 2;
 }

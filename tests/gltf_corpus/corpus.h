@@ -10,7 +10,7 @@ namespace corpus {
 
 struct Case {
   std::string name;  // the file name, e.g. "stride-below-element.gltf"
-  bool valid;        // true when glTF 2.0 (and Khronos' validator) has no error for it
+  bool valid;        // Khronos' glTF-Validator reports no error for it (tests/gltf_corpus/validator_verdicts.tsv)
   std::string (*make)();
 };
 

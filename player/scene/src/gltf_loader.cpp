@@ -199,7 +199,9 @@ std::string brief(const json& value) {
 
 class SchemaCheck {
  public:
-  explicit SchemaCheck(const json& root) : root_(root) {}
+  // `warnings` receives what glTF-Validator reports as a warning and the loader can do without:
+  // a sampler value outside its list means the default for that field.
+  SchemaCheck(const json& root, std::vector<std::string>& warnings) : root_(root), warnings_(warnings) {}
 
   std::string run() {
     if (!root_.is_object()) return "the top level: expected a JSON object";
@@ -282,10 +284,10 @@ class SchemaCheck {
       index(texture, "source", at, "images");
     });
     each("samplers", [&](const json& sampler, const std::string& at) {
-      one_of(sampler, "magFilter", at, {9728, 9729}, false);
-      one_of(sampler, "minFilter", at, {9728, 9729, 9984, 9985, 9986, 9987}, false);
-      one_of(sampler, "wrapS", at, {33071, 33648, 10497}, false);
-      one_of(sampler, "wrapT", at, {33071, 33648, 10497}, false);
+      sampler_value(sampler, "magFilter", at, {9728, 9729}, "linear");
+      sampler_value(sampler, "minFilter", at, {9728, 9729, 9984, 9985, 9986, 9987}, "mipmapped linear");
+      sampler_value(sampler, "wrapS", at, {33071, 33648, 10497}, "repeat");
+      sampler_value(sampler, "wrapT", at, {33071, 33648, 10497}, "repeat");
     });
     each("materials", [&](const json& material, const std::string& at) {
       auto texture_info = [&](const json& holder, const char* key, const std::string& where) {
@@ -405,6 +407,18 @@ class SchemaCheck {
     fail_once(where + "." + key + ": " + std::to_string(value) + " is not allowed; expected one of " + list);
   }
 
+  // An integer, and when outside `allowed` a warning: the texture samples with the default.
+  void sampler_value(const json& object, const char* key, const std::string& where, std::initializer_list<int64_t> allowed,
+                     const char* fallback) {
+    if (!integer(object, key, where, 0, kMaxSafeInteger, false)) return;
+    const int64_t value = object[key].get<int64_t>();
+    if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return;
+    std::string list;
+    for (int64_t a : allowed) list += (list.empty() ? "" : ", ") + std::to_string(a);
+    warnings_.push_back(where + "." + key + ": " + std::to_string(value) + " is not one of " + list + "; " + fallback +
+                        " is used");
+  }
+
   void index(const json& object, const std::string& key, const std::string& where, const char* target, bool required = false) {
     const std::string field = where == key ? key : where + "." + key;
     if (!problem_.empty()) return;
@@ -442,6 +456,7 @@ class SchemaCheck {
   }
 
   const json& root_;
+  std::vector<std::string>& warnings_;
   std::string problem_;
 };
 
@@ -951,7 +966,8 @@ class Builder {
     if (source.sampler >= 0 && static_cast<size_t>(source.sampler) < model_.samplers.size()) {
       const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(source.sampler)];
       texture.mag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::nearest : Filter::linear;
-      texture.mipmaps = sampler.minFilter < 0 || sampler.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST;
+      // Absent or outside its list (the schema check warned), minFilter means the default: mipmapped.
+      texture.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
       texture.repeat_s = sampler.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
       texture.repeat_t = sampler.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
     } else if (source.sampler >= 0) {
@@ -1030,7 +1046,7 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     if (const size_t at = what.find("] "); at != std::string::npos) what.erase(0, at + 2);  // "[json.exception...] "
     return refuse("not a valid glTF 2.0 file: " + what);
   }
-  if (const std::string problem = SchemaCheck(root).run(); !problem.empty()) return refuse(problem);
+  if (const std::string problem = SchemaCheck(root, report.warnings).run(); !problem.empty()) return refuse(problem);
   if (const std::string problem = uri_problem(root); !problem.empty()) return refuse(problem);
   root = json();  // tinygltf parses its own copy; this one need not stay in memory beside it
 

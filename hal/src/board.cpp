@@ -84,10 +84,12 @@ public:
   long long integer(const std::string& key, long long fallback, long long lo, long long hi) const {
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
-    auto v = n->value<long long>();
-    if (!n->is_integer() || !v || *v < lo || *v > hi)
+    // as_integer, not value<long long>: toml++ converts a float such as 1e280 to an integer
+    // without a range check (undefined behaviour, found by tests/fuzz).
+    const toml::value<int64_t>* v = n->as_integer();
+    if (!v || v->get() < lo || v->get() > hi)
       fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-    return *v;
+    return v->get();
   }
   bool boolean(const std::string& key, bool fallback) const {
     const toml::node* n = t_.get(key);

@@ -82,6 +82,22 @@ TEST(Board, ErrorsNameFileFieldAndExpectation) {
   EXPECT_THROW(load_board("/nonexistent/board.toml"), ConfigError);
 }
 
+// Found by tests/fuzz (regressions/board/float_beyond_long.toml): a float where an integer belongs
+// went through toml++'s unchecked float-to-integer conversion.
+TEST(Board, AFloatBeyondAnyIntegerIsRefusedAsNotAnInteger) {
+  EXPECT_EQ(error_of("[camera]\ndevice = \"/dev/video0\"\nwidth = 1e280\n"),
+            "b.toml: camera.width: expected an integer in 16..8192, got floating-point");
+  EXPECT_EQ(error_of("[camera]\ndevice = \"/dev/video0\"\nheight = 720.0\n"),
+            "b.toml: camera.height: expected an integer in 16..8192, got floating-point");
+  const std::string file = std::string(HAL_SOURCE_DIR) + "/tests/fuzz/regressions/board/float_beyond_long.toml";
+  try {
+    load_board(file);
+    ADD_FAILURE() << file << " loaded";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), file + ": camera.width: expected an integer in 16..8192, got floating-point");
+  }
+}
+
 TEST(Board, ShippedBoardFilesParse) {
   for (const char* f : {"raspberry-pi-4.toml", "raspberry-pi-5.toml", "mock.toml"}) {
     SCOPED_TRACE(f);

@@ -43,6 +43,21 @@ bool parse_size(const std::string& text, int& width, int& height) {
   return (size_text >> width >> separator >> height) && separator == 'x' && width >= 1 && height >= 1 && size_text.eof();
 }
 
+// --size and the settings options, which render and play share: false after printing the error.
+bool apply_frame_options(const std::string& size, int& width, int& height, const SettingOptions& options,
+                         render::FrameSettings& settings) {
+  if (!parse_size(size, width, height)) {
+    std::cerr << "error: --size: '" << size << "' is not WxH with positive integers (e.g. 1024x768)\n";
+    return false;
+  }
+  std::string error;
+  if (!options.apply(settings, error)) {
+    std::cerr << "error: " << error << "\n";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -125,30 +140,14 @@ int main(int argc, char** argv) {
   CLI11_PARSE(cli, argc, argv);
 
   if (cli.get_subcommands().empty() || play_cmd->parsed()) {
-    if (!parse_size(play_size, play.width, play.height)) {
-      std::cerr << "error: --size: '" << play_size << "' is not WxH with positive integers (e.g. 1024x768)\n";
-      return 2;
-    }
-    std::string error;
-    if (!play_settings.apply(play.settings, error)) {
-      std::cerr << "error: " << error << "\n";
-      return 2;
-    }
+    if (!apply_frame_options(play_size, play.width, play.height, play_settings, play.settings)) return 2;
     return app::run_play(play, std::cout, std::cerr);
   }
 
   if (hal_cmd->parsed()) return hal::run_hal_test(hal_test, std::cout);
 
   if (render_cmd->parsed()) {
-    if (!parse_size(size, render.frame.width, render.frame.height)) {
-      std::cerr << "error: --size: '" << size << "' is not WxH with positive integers (e.g. 1024x768)\n";
-      return 2;
-    }
-    std::string error;
-    if (!render_settings.apply(render.frame, error)) {
-      std::cerr << "error: " << error << "\n";
-      return 2;
-    }
+    if (!apply_frame_options(size, render.frame.width, render.frame.height, render_settings, render.frame)) return 2;
     return app::run_render(render, std::cout, std::cerr);
   }
   if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);

@@ -1,0 +1,345 @@
+// The light field display models: the three spaces of HoloVizio-style displays, the quilt's views and
+// the lenticular interleave, and the display files.
+#include "lightfield/display_file.h"
+#include "lightfield/modules.h"
+#include "lightfield/quilt.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace {
+
+using lightfield::Box;
+using lightfield::Module;
+
+lightfield::ModulesDisplay c80() {
+  lightfield::Display display;
+  std::string error;
+  EXPECT_TRUE(lightfield::load_display(PLAYER_BOARD_DIR "/displays/holovizio-c80.toml", display, error)) << error;
+  return display.modules;
+}
+
+TEST(LightfieldRoi, MapsTheWorldBoxUniformlyIntoThePhysicalBoxCentred) {
+  const Box world{{-2, 0, 10}, {2, 1, 12}}, physical{{-0.8, -0.45, -0.3}, {0.8, 0.45, 0.3}};
+  const auto t = lightfield::roi_transform(world, physical);
+  ASSERT_TRUE(t);
+  EXPECT_DOUBLE_EQ(t->scale, 0.3);  // the tightest axis: z, 0.6 / 2 (x gives 0.4, y 0.9)
+  const glm::dvec3 centre = t->to_physical({0, 0.5, 11});
+  EXPECT_NEAR(glm::length(centre), 0.0, 1e-12);
+  EXPECT_NEAR(t->to_physical({0, 0, 12}).z, 0.3, 1e-12);
+  EXPECT_NEAR(t->to_physical({2, 0, 12}).x, 0.6, 1e-12);  // inside the box: x is not the tight axis
+  const glm::dvec3 p(1.25, -3.5, 7.0);
+  EXPECT_NEAR(glm::length(t->to_world(t->to_physical(p)) - p), 0.0, 1e-12);
+  const glm::dvec4 by_matrix = t->world_to_physical() * glm::dvec4(p, 1.0);
+  EXPECT_NEAR(glm::length(glm::dvec3(by_matrix) - t->to_physical(p)), 0.0, 1e-12);
+  const glm::dvec4 back = t->physical_to_world() * by_matrix;
+  EXPECT_NEAR(glm::length(glm::dvec3(back) - p), 0.0, 1e-12);
+  EXPECT_FALSE(lightfield::roi_transform(Box{{0, 0, 0}, {1, 0, 1}}, physical));  // flat world box
+}
+
+TEST(LightfieldModules, PhysicalToImageOfKnownPoints) {
+  const lightfield::ModulesDisplay display = c80();
+  ASSERT_EQ(display.module_x.size(), 80u);
+  const Module m = lightfield::module_of(display, 0);
+  EXPECT_DOUBLE_EQ(m.x, -1.0);
+  EXPECT_DOUBLE_EQ(m.z, -1.2);
+  // A point on the screen is shown where it is, by every module.
+  const auto on_screen = lightfield::physical_to_image(m, {0.4, 0.225, 0.0});
+  ASSERT_TRUE(on_screen);
+  EXPECT_NEAR(on_screen->x, 1.2 / 1.6 * 320, 1e-9);
+  EXPECT_NEAR(on_screen->y, 0.225 / 0.9 * 180, 1e-9);
+  // In front of the screen, by hand: S.x = -1 + 1.2 * 1.2 / 1.7, S.y = 0.1 + 0.2 * 2.5 / 2.0 = 0.35,
+  // u = (S.x + 0.8) / 1.6 * 320, v = (0.45 - 0.35) / 0.9 * 180 = 20.
+  const auto front = lightfield::physical_to_image(m, {0.2, 0.3, 0.5});
+  ASSERT_TRUE(front);
+  EXPECT_NEAR(front->x, (-1.0 + 1.44 / 1.7 + 0.8) / 1.6 * 320, 1e-9);
+  EXPECT_NEAR(front->y, 20.0, 1e-9);
+  EXPECT_DOUBLE_EQ(front->z, 0.5);
+  // Behind the module or beyond the observer line nothing is shown.
+  EXPECT_FALSE(lightfield::physical_to_image(m, {0, 0, -1.3}));
+  EXPECT_FALSE(lightfield::physical_to_image(m, {0, 0, 2.5}));
+}
+
+TEST(LightfieldModules, EachPixelsRayPassesThroughThePointItShows) {
+  const lightfield::ModulesDisplay display = c80();
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k : {0, 17, 40, 79}) {
+    const Module m = lightfield::module_of(display, k);
+    for (int trial = 0; trial < 200; ++trial) {
+      const double u = unit(random) * m.width, v = unit(random) * m.height;
+      const glm::dvec3 s = lightfield::screen_point_of_pixel(m, u, v);
+      const glm::dvec3 o = lightfield::observer_point(m, s);
+      EXPECT_DOUBLE_EQ(o.z, display.observer_distance);
+      // The observer point, S and the module are on one line seen from above (horizontal parallax).
+      const glm::dvec2 to_s(s.x - m.x, s.z - m.z), to_o(o.x - m.x, o.z - m.z);
+      EXPECT_NEAR(to_s.x * to_o.y - to_s.y * to_o.x, 0.0, 1e-9);
+      for (double t : {0.1, 0.4, 0.7, 1.3, 1.6}) {  // points between S and O, and behind the screen
+        const glm::dvec3 q = o + t * (s - o);
+        if (q.z <= m.z + 1e-6) continue;
+        const auto image = lightfield::physical_to_image(m, q);
+        ASSERT_TRUE(image);
+        EXPECT_NEAR(image->x, u, 1e-7) << "module " << k << " t " << t;
+        EXPECT_NEAR(image->y, v, 1e-7) << "module " << k << " t " << t;
+      }
+    }
+  }
+}
+
+TEST(LightfieldModules, ClipPositionPutsEachVertexOnItsExactPixelAndOrdersDepthTowardsTheObserver) {
+  const lightfield::ModulesDisplay display = c80();
+  const Module m = lightfield::module_of(display, 23);
+  EXPECT_GT(m.z_front, display.physical_roi.max.z);
+  EXPECT_LT(m.z_back, display.physical_roi.min.z);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> x(-0.8, 0.8), y(-0.45, 0.45), z(-0.3, 0.3);
+  for (int trial = 0; trial < 500; ++trial) {
+    const glm::dvec3 q(x(random), y(random), z(random));
+    const glm::dvec4 clip = lightfield::clip_position(m, q);
+    const auto image = lightfield::physical_to_image(m, q);
+    ASSERT_TRUE(image);
+    ASSERT_GT(clip.w, 0.0);
+    EXPECT_NEAR((clip.x / clip.w * 0.5 + 0.5) * m.width, image->x, 1e-9);
+    EXPECT_NEAR((0.5 - clip.y / clip.w * 0.5) * m.height, image->y, 1e-9);
+    const glm::dvec3 nearer = q + glm::dvec3(0, 0, 0.01);
+    const glm::dvec4 clip_nearer = lightfield::clip_position(m, nearer);
+    EXPECT_LT(clip_nearer.z / clip_nearer.w, clip.z / clip.w);  // nearer the observer: in front
+    EXPECT_GT(clip.z / clip.w, -1.0);
+    EXPECT_LT(clip.z / clip.w, 1.0);
+  }
+}
+
+TEST(LightfieldModules, EdgesBendOnlyWhereDepthChanges) {
+  const Module m = lightfield::module_of(c80(), 5);
+  // At one depth both perspectives are affine: a straight edge stays straight and exact.
+  EXPECT_LT(lightfield::edge_error_pixels(m, {-0.5, -0.3, 0.1}, {0.6, 0.4, 0.1}), 1e-9);
+  // Along depth the vertical perspective is not the rasteriser's: the error is real and measured.
+  const double deep = lightfield::edge_error_pixels(m, {0.0, 0.4, -0.3}, {0.0, 0.4, 0.3});
+  EXPECT_GT(deep, 0.5);
+  // At the observer line's height the vertical perspective has nothing to move, and horizontally the
+  // rasteriser's perspective is the module's own: no error even across depth.
+  EXPECT_LT(lightfield::edge_error_pixels(m, {-0.6, m.observer_height, -0.3}, {0.6, m.observer_height, 0.3}), 1e-9);
+}
+
+TEST(LightfieldModules, SeesExactlyTheModulesWhoseImageTheBoxReaches) {
+  lightfield::ModulesDisplay display = c80();
+  display.footprint = {0.6, 0.8};  // each module fills only the right part of the screen
+  const Box small{{0.3, -0.1, -0.1}, {0.5, 0.1, 0.1}};
+  int seen = 0;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 80; ++k) {
+    const Module m = lightfield::module_of(display, k);
+    const bool sees = lightfield::sees(m, small);
+    seen += sees ? 1 : 0;
+    // Brute force: whether any of many points of the box lands in the image.
+    bool hit = false;
+    for (int trial = 0; trial < 4000 && !hit; ++trial) {
+      const glm::dvec3 q = small.min + (small.max - small.min) * glm::dvec3(unit(random), unit(random), unit(random));
+      const auto image = lightfield::physical_to_image(m, q);
+      hit = image && image->x >= 0 && image->x <= m.width && image->y >= 0 && image->y <= m.height;
+    }
+    if (hit) {
+      EXPECT_TRUE(sees) << "module " << k;
+    }
+  }
+  EXPECT_GT(seen, 0);
+  EXPECT_LT(seen, 80);
+  // By hand: the module at x = -1 shows the box between S.x = 0.2 and 0.636 (reaching the footprint);
+  // the one at x = 1 between 0.236 and 0.538 (short of it).
+  EXPECT_TRUE(lightfield::sees(lightfield::module_of(display, 0), small));
+  EXPECT_FALSE(lightfield::sees(lightfield::module_of(display, 79), small));
+}
+
+TEST(LightfieldModules, MontageGridIsAsSquareAsItGets) {
+  EXPECT_EQ(lightfield::montage_grid(1), glm::ivec2(1, 1));
+  EXPECT_EQ(lightfield::montage_grid(8), glm::ivec2(3, 3));
+  EXPECT_EQ(lightfield::montage_grid(80), glm::ivec2(9, 9));
+  EXPECT_EQ(lightfield::montage_grid(32), glm::ivec2(6, 6));
+}
+
+// pitch 50, slope -5, center 0.1, DPI 300, a 100x50 panel, 10 views: p = 50 * 100 / 300 * cos(atan(-1/5))
+// = 16.3430, t = 50 / (100 * -5) = -0.1, s = 1/300. Pixel (0, 0), red: u = 0.005, v = 0.01,
+// (0.005 - 0.001) * 16.343 - 0.1 = -0.0346, fract 0.9654: view 9; green: (0.005 + 1/300 - 0.001) *
+// 16.343 - 0.1 = 0.0198: view 0. The others likewise (computed with the formula in double precision,
+// none within 0.04 views of a boundary).
+TEST(LightfieldQuilt, InterleaveAssignsHandComputedViews) {
+  lightfield::Calibration c;
+  c.pitch = 50;
+  c.slope = -5;
+  c.center = 0.1;
+  c.dpi = 300;
+  c.screen_width = 100;
+  c.screen_height = 50;
+  struct Case {
+    int x, y;
+    int views[3], inverted[3], flipped[3];
+  };
+  const Case cases[] = {{0, 0, {9, 0, 0}, {0, 9, 9}, {9, 0, 1}},
+                        {37, 5, {8, 9, 9}, {1, 0, 0}, {2, 2, 3}},
+                        {99, 49, {5, 5, 6}, {4, 4, 3}, {7, 8, 8}},
+                        {50, 25, {3, 3, 4}, {6, 6, 5}, {9, 0, 0}}};
+  for (const Case& test : cases)
+    for (int channel = 0; channel < 3; ++channel) {
+      c.inverted_views = false;
+      c.flip_x = false;
+      EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel), test.views[channel])
+          << test.x << "," << test.y << " channel " << channel;
+      c.inverted_views = true;
+      EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel), test.inverted[channel])
+          << "invView " << test.x << "," << test.y << " channel " << channel;
+      c.inverted_views = false;
+      c.flip_x = true;
+      EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel), test.flipped[channel])
+          << "flipImageX " << test.x << "," << test.y << " channel " << channel;
+    }
+}
+
+TEST(LightfieldQuilt, TilesRunFromTheBottomLeftAlongRows) {
+  lightfield::QuiltDisplay quilt;  // 5x9
+  EXPECT_EQ(quilt.views(), 45);
+  EXPECT_EQ(lightfield::tile_of(quilt, 0), glm::ivec2(0, 0));
+  EXPECT_EQ(lightfield::tile_of(quilt, 4), glm::ivec2(4, 0));
+  EXPECT_EQ(lightfield::tile_of(quilt, 5), glm::ivec2(0, 1));
+  EXPECT_EQ(lightfield::tile_of(quilt, 44), glm::ivec2(4, 8));
+}
+
+TEST(LightfieldQuilt, ViewsShareTheFocalPlaneWindowAndShowParallaxAroundIt) {
+  const glm::dvec3 eye(0, 1, 5), target(0, 1, 0), up(0, 1, 0);
+  const double fov = glm::radians(30.0), aspect = 420.0 / 560.0;
+  const auto ndc = [](const lightfield::OffAxisView& v, const glm::dvec3& p) {
+    const glm::dvec4 clip = v.projection * v.view * glm::dvec4(p, 1.0);
+    return glm::dvec3(clip) / clip.w;
+  };
+  const lightfield::OffAxisView centre = lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 22, 45);
+  const lightfield::OffAxisView first = lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 0, 45);
+  const lightfield::OffAxisView last = lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 44, 45);
+  // View 0 sits at -20 degrees seen from the target, view 44 at +20.
+  EXPECT_NEAR(first.eye.x, -5 * std::tan(glm::radians(20.0)), 1e-9);
+  EXPECT_NEAR(last.eye.x, 5 * std::tan(glm::radians(20.0)), 1e-9);
+  EXPECT_NEAR(centre.eye.x, 0.0, 1e-9);
+  // Every point of the focal plane lands at the same place in every view; the window's aspect is the view's.
+  for (const glm::dvec3& p : {target, target + glm::dvec3(0.7, -0.3, 0), target + glm::dvec3(-1.1, 0.9, 0)}) {
+    EXPECT_NEAR(glm::length(glm::dvec2(ndc(first, p)) - glm::dvec2(ndc(last, p))), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(glm::dvec2(ndc(centre, p)) - glm::dvec2(ndc(last, p))), 0.0, 1e-9);
+  }
+  const double half_height = 5 * std::tan(fov / 2);
+  EXPECT_NEAR(ndc(first, target + glm::dvec3(half_height * aspect, half_height, 0)).x, 1.0, 1e-9);
+  EXPECT_NEAR(ndc(first, target + glm::dvec3(half_height * aspect, half_height, 0)).y, 1.0, 1e-9);
+  // A point in front of the focal plane moves left as the camera moves right; one behind, right.
+  const glm::dvec3 in_front = target + glm::dvec3(0, 0, 1), behind = target - glm::dvec3(0, 0, 1);
+  EXPECT_GT(ndc(first, in_front).x, ndc(last, in_front).x);
+  EXPECT_LT(ndc(first, behind).x, ndc(last, behind).x);
+}
+
+// Display files: the examples in board/displays load as written; errors name file, line and key.
+TEST(LightfieldDisplayFile, ExamplesLoadAsWritten) {
+  lightfield::Display display;
+  std::string error;
+  ASSERT_TRUE(lightfield::load_display(PLAYER_BOARD_DIR "/displays/desk-8.toml", display, error)) << error;
+  EXPECT_EQ(display.type, lightfield::DisplayType::modules);
+  ASSERT_EQ(display.views(), 8);
+  EXPECT_DOUBLE_EQ(display.modules.module_x.front(), -0.2);
+  EXPECT_DOUBLE_EQ(display.modules.module_x.back(), 0.2);
+  EXPECT_DOUBLE_EQ(display.modules.footprint.x, -0.2);  // default: the whole screen
+  EXPECT_EQ(display.modules.width, 256);
+  EXPECT_FALSE(display.modules.world_roi);
+
+  ASSERT_TRUE(lightfield::load_display(PLAYER_BOARD_DIR "/displays/holovizio-c80.toml", display, error)) << error;
+  EXPECT_EQ(display.views(), 80);
+  EXPECT_NEAR(display.modules.module_x[1] - display.modules.module_x[0], 2.0 / 79, 1e-12);
+  EXPECT_DOUBLE_EQ(display.modules.observer_height, 0.1);
+
+  ASSERT_TRUE(lightfield::load_display(PLAYER_BOARD_DIR "/displays/looking-glass-portrait.toml", display, error)) << error;
+  EXPECT_EQ(display.type, lightfield::DisplayType::quilt);
+  EXPECT_EQ(display.views(), 45);
+  EXPECT_EQ(display.quilt.view_width, 420);
+  EXPECT_EQ(display.quilt.calibration.screen_width, 1536);
+  EXPECT_DOUBLE_EQ(display.quilt.calibration.pitch, 52.58);
+  EXPECT_TRUE(display.quilt.calibration.inverted_views);
+  EXPECT_DOUBLE_EQ(display.quilt.calibration.view_cone_deg, 40.0);
+}
+
+std::string parse_error(const std::string& text) {
+  lightfield::Display display;
+  std::string error;
+  EXPECT_FALSE(lightfield::parse_display(text, "/tmp/lf-test/d.toml", display, error)) << text;
+  return error;
+}
+
+constexpr const char* kGood = R"(type = "modules"
+[screen]
+width = 1.6
+height = 0.9
+[observer]
+distance = 2.5
+[modules]
+count = 4
+x_first = -1.0
+x_last = 1.0
+z = -1.2
+resolution = "64x36"
+)";
+
+TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
+  lightfield::Display display;
+  std::string error;
+  ASSERT_TRUE(lightfield::parse_display(kGood, "d.toml", display, error)) << error;
+  EXPECT_EQ(display.views(), 4);
+  const auto replaced = [](std::string_view from, std::string_view to) {
+    std::string text = kGood;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  EXPECT_EQ(parse_error(replaced("count = 4", "count = 0")),
+            "/tmp/lf-test/d.toml:8:9: modules.count: expected an integer in 1..1024, got 0");
+  EXPECT_EQ(parse_error(replaced("\"64x36\"", "\"64by36\"")),
+            "/tmp/lf-test/d.toml:12:14: modules.resolution: expected each module's image size as \"WxH\", each 1..16384, got '64by36'");
+  EXPECT_EQ(parse_error(replaced("z = -1.2", "z = 0.5")),
+            "/tmp/lf-test/d.toml:11:5: modules.z: expected a number < 0 (the modules stand behind the screen), got 0.5");
+  EXPECT_EQ(parse_error(replaced("width = 1.6", "widht = 1.6")),
+            "/tmp/lf-test/d.toml:3:9: screen.widht: unknown key (expected one of width, height)");
+  EXPECT_EQ(parse_error(replaced("type = \"modules\"", "type = \"hologram\"")),
+            "/tmp/lf-test/d.toml:1:8: type: expected \"modules\" or \"quilt\", got 'hologram'");
+  EXPECT_EQ(parse_error(replaced("[observer]\ndistance = 2.5\n", "")).substr(0, 43), "/tmp/lf-test/d.toml:1:1: observer: expected");
+  EXPECT_EQ(parse_error(replaced("count = 4", "count = 3\nx = [0.0, 1.0]")),
+            "/tmp/lf-test/d.toml:8:9: modules.count: expected the number of entries of modules.x (2), got 3");
+  EXPECT_EQ(parse_error(replaced("count = 4", "x = [0.0, 1.0]")),
+            "/tmp/lf-test/d.toml:9:11: modules.x_first: expected nothing when modules.x lists the positions, got -1");
+  EXPECT_EQ(parse_error(std::string(kGood) + "[roi]\nphysical_min = [-0.5, -0.4, -1.5]\nphysical_max = [0.5, 0.4, 0.2]\n"),
+            "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected z above modules.z (-1.200000): the box lies in front of the "
+            "modules, got array");
+  EXPECT_EQ(parse_error("type = \"modules\"\n[screen\n").substr(0, 24), "/tmp/lf-test/d.toml:2:8:");
+}
+
+TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lightfield-test";
+  std::filesystem::create_directories(dir);
+  const std::string display_path = (dir / "q.toml").string();
+  std::ofstream(dir / "visual.json") << R"({"pitch": {"value": 50}, "slope": {"value": -5}, "center": {"value": 0.1},
+    "DPI": {"value": 300}, "screenW": {"value": 100}, "screenH": {"value": "fifty"}})";
+  lightfield::Display display;
+  std::string error;
+  EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"visual.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n",
+                                         display_path, display, error));
+  EXPECT_EQ(error, (dir / "visual.json").string() +
+                       ": screenH: expected an object {\"value\": number (an integer in 1..16384)}, got \"value\" of type string");
+  EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"absent.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n",
+                                         display_path, display, error));
+  EXPECT_EQ(error, display_path + ":2:15: calibration: expected a readable file (" + (dir / "absent.json").string() +
+                       " cannot be opened), got 'absent.json'");
+  EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"v.json\"\nquilt = \"65x2\"\nview_size = \"50x25\"\n",
+                                         display_path, display, error));
+  EXPECT_EQ(error, display_path + ":3:9: quilt: expected columns x rows of views as \"WxH\", each 1..64, got '65x2'");
+  lightfield::Calibration c;
+  EXPECT_FALSE(lightfield::parse_calibration("[1, 2]", "v.json", c, error));
+  EXPECT_EQ(error, "v.json: expected a JSON object (the display's visual.json)");
+  EXPECT_FALSE(lightfield::parse_calibration(R"({"pitch": 50})", "v.json", c, error));
+  EXPECT_EQ(error, "v.json: pitch: expected an object {\"value\": number > 0}, got number");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

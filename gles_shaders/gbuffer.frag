@@ -14,6 +14,10 @@ uniform highp sampler2D u_base_color_texture;
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out float o_linear_depth;
+#ifdef LIGHTFIELD_MODULES
+in vec3 v_world_position;
+layout(location = 3) out vec4 o_world_position;  // the positions texture of Algorithm 2
+#endif
 
 void main() {
   vec4 albedo = u_base_color;
@@ -28,4 +32,7 @@ void main() {
   o_albedo = vec4(albedo.rgb, 1.0);
   o_normal = vec4(n, 1.0);
   o_linear_depth = -v_view_position.z;
+#ifdef LIGHTFIELD_MODULES
+  o_world_position = vec4(v_world_position, 1.0);
+#endif
 }

@@ -16,6 +16,7 @@
 #define BINDING_BLUR_PARAMS 1
 #define BINDING_COMPOSITE_PARAMS 2
 #define BINDING_UPSAMPLE_PARAMS 3
+#define BINDING_MODULE_PARAMS 4
 
 // What the present pass shows: the shaded image or one of the debug outputs.
 #define OUTPUT_COLOR 0
@@ -65,6 +66,17 @@ struct CompositeParams {
   ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
                           // w: unused
   ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
+};
+
+// One optical module of a light field display (lightfield/modules.h, Module): what the G-buffer's
+// vertex stage and Algorithm 2's SSAO need to map physical points to the module's image.
+struct ModuleParams {
+  mat4 world_to_physical;  // affine: the ROI transform
+  mat4 physical_to_world;
+  vec4 module;             // x: P.x, y: P.z, z: D (observer distance), w: y_obs (observer height)
+  vec4 screen;             // x, y: footprint x0, x1; z: screen height; w: physical units per world unit
+  vec4 depth;              // x: z_front, y: z_back (the physical z range rasterised); z: 1 / (D - z_back); w: world seed cell
+  ivec4 size;              // x, y: the module's image size
 };
 
 #endif

@@ -6,11 +6,26 @@
 //                        of GTAO (Jimenez et al. 2016).
 // Every radius gives its own AO; the radii merge by max (Hoang & Low). Large radii read coarser
 // levels of the depth chain. Output: r = AO in [0,1], g = linear depth / far for the blur and upsample.
+//
+// LIGHTFIELD_MODULES: Algorithm 2 of Doronin et al. for one optical module of a light field display.
+// The shaded point comes from the positions texture (world space), samples are placed around it in
+// world space, and each is mapped to the module's image by its world-to-image transform
+// (lightfield.glsl) and compared with the module's depth (distance from the observer line). The
+// per-sample turn is seeded from the world position, so one surface point gets the same samples in
+// every module. Sphere and hemisphere estimators; the horizon search walks screen-space slices and
+// has no such form.
 #include "common.glsl"
 #include "shared_layout.glsl"
+#ifdef LIGHTFIELD_MODULES
+#include "lightfield.glsl"
+uniform highp sampler2D u_positions;  // world position of the visible surface; a = 0 on background
+#endif
 
 #ifndef ESTIMATOR
 #define ESTIMATOR ESTIMATOR_SPHERE
+#endif
+#if defined(LIGHTFIELD_MODULES) && ESTIMATOR == ESTIMATOR_HORIZON
+#error "the horizon estimator has no Algorithm 2 form; modules use sphere or hemisphere"
 #endif
 
 layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
@@ -45,6 +60,41 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
 #endif
 
 #if ESTIMATOR != ESTIMATOR_HORIZON
+
+#ifdef LIGHTFIELD_MODULES
+// Algorithm 2, rows 3-9: the share of kernel points around the world position that the module's
+// stored surface hides. Depths are distances from the observer line in physical units; the radius
+// and bias are scaled to match (world to physical is a uniform scale).
+highp float hidden_share_module(highp vec3 world, highp float depth, highp mat3 basis, highp float radius) {
+  highp float physical_radius = radius * lightfield_module.screen.w;
+  highp float bias = ssao.radius_4_bias.y * physical_radius;
+  highp float pz = lightfield_module.module.y, d = lightfield_module.module.z;
+  int hidden = 0;
+  for (int i = 0; i < ssao.counts.x; ++i) {
+    highp vec3 sample_world = world + radius * (basis * ssao.kernel[i].xyz);
+    highp vec3 q = (lightfield_module.world_to_physical * vec4(sample_world, 1.0)).xyz;
+    if (q.z <= pz || q.z >= d) continue;  // outside the module's image space: nothing can hide it
+    highp vec2 ndc = module_ndc(module_screen_point(q));
+    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(ssao.config.zw)));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+    highp float surface = texelFetch(u_linear_depth, texel, 0).r;
+    highp float sample_depth = module_depth(q);
+    if (surface > 0.0 && surface < sample_depth - bias && abs(surface - depth) < physical_radius) ++hidden;
+  }
+  return float(hidden) / float(ssao.counts.x);
+}
+
+// A turn per world cell (a fraction of the base radius across): the same in every module.
+highp vec2 world_turn(highp vec3 world) {
+  uvec3 cell = uvec3(ivec3(floor(world / lightfield_module.depth.w)));
+  uint h = cell.x * 0x8da6b343u ^ cell.y * 0xd8163841u ^ cell.z * 0xcb1ab31fu;
+  h ^= h >> 16;
+  h *= 0x7feb352du;
+  h ^= h >> 15;
+  highp float angle = float(h >> 8) * (6.28318530718 / 16777216.0);
+  return vec2(cos(angle), sin(angle));
+}
+#endif
 
 #if ESTIMATOR == ESTIMATOR_HEMISPHERE
 // How far the shaded point's tangent plane lies from the eye along the ray through `ndc` (0 where the
@@ -173,8 +223,14 @@ void main() {
     }
     depth = 1.0 / u_inverse_far;  // measuring the skip: do the work a surface at the far plane would cost
   }
+#ifdef LIGHTFIELD_MODULES
+  // Algorithm 2, rows 1-2: the world position from the positions texture, not from depth.
+  highp vec3 position = texelFetch(u_positions, pixel, 0).xyz;
+  highp vec2 turn = world_turn(position);
+#else
   highp vec3 position = view_position(pixel, depth);
   highp vec2 turn = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy;
+#endif
 #if ESTIMATOR == ESTIMATOR_SPHERE
   highp mat3 basis = mat3(turn.x, turn.y, 0.0, -turn.y, turn.x, 0.0, 0.0, 0.0, 1.0);
 #elif ESTIMATOR == ESTIMATOR_HEMISPHERE
@@ -193,6 +249,8 @@ void main() {
   for (int k = ssao.radius_range.x; k < ssao.radius_range.y; ++k) {
 #if ESTIMATOR == ESTIMATOR_HORIZON
     ao = max(ao, horizon_occlusion(pixel, position, normal, depth, turn_angle, radius_at(k), level_at(k)));
+#elif defined(LIGHTFIELD_MODULES)
+    ao = max(ao, hidden_share_module(position, depth, basis, radius_at(k)));
 #else
     ao = max(ao, hidden_share(position, depth, basis, radius_at(k), level_at(k)));
 #endif

@@ -83,7 +83,15 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--frames", render.frames, "Frames to render; times are the median of all but the first")
       ->check(CLI::Range(1, 100000))->capture_default_str();
   render_cmd->add_option("--dump", render.dump_dir,
-                         "Write float EXRs (raw and blurred AO, world position, normal, linear depth) and camera.json to DIR");
+                         "Write float EXRs (raw and blurred AO, world position, normal, linear depth) and camera.json to DIR "
+                         "(with --display: each view's in DIR/module-K/ or DIR/view-K/, with view.json)");
+  render_cmd->add_option("--display", render.display,
+                         "Light field display file (TOML, see board/displays): render every optical module or quilt view; "
+                         "-o writes the montage of the modules or the quilt, --size is ignored");
+  render_cmd->add_option("--modules-dir", render.modules_dir, "With --display: one PNG per module (module-K.png) or view (view-K.png)");
+  render_cmd->add_option("--native", render.native_output, "With a quilt --display: the interleaved native panel image (PNG)");
+  render_cmd->add_flag("--view-probe", render.view_probe,
+                       "With --display: draw view k as the flat grey (k, k, k) instead of the scene, to check the interleave");
 
   std::string info_platform = "auto";
   auto* info_cmd = cli.add_subcommand("info", "Print the platform, GL renderer, version and the extensions used");
@@ -148,6 +156,7 @@ int main(int argc, char** argv) {
 
   if (render_cmd->parsed()) {
     if (!apply_frame_options(size, render.frame.width, render.frame.height, render_settings, render.frame)) return 2;
+    for (const auto& [key, value] : render_settings.values) render.estimator_given |= key == "estimator" && !value.empty();
     return app::run_render(render, std::cout, std::cerr);
   }
   if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);

@@ -3,6 +3,7 @@
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "image_io.h"
+#include "light_field_render.h"
 #include "platform/platform.h"
 #include "playback/timeline.h"
 #include "scene/load.h"
@@ -131,6 +132,12 @@ scene::Framing framing_of(const playback::Camera& camera) {
 }
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.display.empty()) return run_render_light_field(options, out, err);
+  if (!options.modules_dir.empty() || !options.native_output.empty() || options.view_probe) {
+    err << "error: " << (!options.modules_dir.empty() ? "--modules-dir" : !options.native_output.empty() ? "--native" : "--view-probe")
+        << ": needs --display FILE (a light field display)\n";
+    return 2;
+  }
   const auto load_start = std::chrono::steady_clock::now();
   scene::Scene scene;
   std::string error;

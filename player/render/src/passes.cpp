@@ -39,18 +39,34 @@ void Frame::finish_pass(int pass) const {
 
 namespace {
 
+shared_layout::ModuleParams module_params(const ModuleView& view) {
+  const lightfield::Module& m = view.module;
+  shared_layout::ModuleParams params{};
+  params.world_to_physical = glm::mat4(view.roi.world_to_physical());
+  params.physical_to_world = glm::mat4(view.roi.physical_to_world());
+  params.module = glm::vec4(m.x, m.z, m.observer_distance, m.observer_height);
+  params.screen = glm::vec4(m.footprint0, m.footprint1, m.screen_height, view.roi.scale);
+  params.depth = glm::vec4(m.z_front, m.z_back, 1.0 / (m.observer_distance - m.z_back), view.seed_cell);
+  params.size = glm::ivec4(m.width, m.height, 0, 0);
+  return params;
+}
+
 void draw_scene(const Frame& frame, bool depth_only) {
   const Programs& programs = frame.programs;
   const SceneGpu& scene = frame.scene;
   const bool untextured_variant = frame.targets.settings().untextured_variant;
+  const bool modules = frame.view.module.has_value();
+  const RasterProgram& depth_program = modules ? programs.module_depth_only : programs.depth_only;
+  const RasterProgram& textured_program = modules ? programs.module_gbuffer_textured : programs.gbuffer_textured;
+  const RasterProgram& plain_program = modules ? programs.module_gbuffer_plain : programs.gbuffer_plain;
+  if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, frame.targets.module_ubo.id());
   const glm::mat4 projection(frame.view.projection);
   const RasterProgram* bound = nullptr;
   for (const SceneGpu::Draw& draw : scene.draws()) {
     const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
     const bool textured = material.base_color_texture >= 0;
     const bool fetches = textured || !untextured_variant;
-    const RasterProgram* program =
-        depth_only ? &programs.depth_only : fetches ? &programs.gbuffer_textured : &programs.gbuffer_plain;
+    const RasterProgram* program = depth_only ? &depth_program : fetches ? &textured_program : &plain_program;
     if (program != bound) {
       gl::api.UseProgram(program->program.id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
@@ -92,6 +108,7 @@ void begin_raster(const Frame& frame) {
   gl::api.ClearBufferfv(GL_COLOR, 0, zero);
   gl::api.ClearBufferfv(GL_COLOR, 1, zero);
   gl::api.ClearBufferfv(GL_COLOR, 2, zero);  // linear depth 0 marks background
+  if (frame.targets.modules()) gl::api.ClearBufferfv(GL_COLOR, 3, zero);
   gl::api.DepthMask(GL_TRUE);
   gl::api.ClearBufferfv(GL_DEPTH, 0, &one);
 }
@@ -129,8 +146,9 @@ bool ao_passes(const Frame& frame) {
   ViewTargets& targets = frame.targets;
   const FrameSettings& settings = targets.settings();
   const View& view = frame.view;
-  // A still view over a static scene sees the same AO: keep it rather than compute it again.
-  targets.reused_ao = settings.reuse_static_ao && targets.have_ao && view.view == targets.ao_view &&
+  // A still view over a static scene sees the same AO: keep it rather than compute it again. Light
+  // field modules share one set of targets, so each module's AO is computed anew.
+  targets.reused_ao = settings.reuse_static_ao && !view.module && targets.have_ao && view.view == targets.ao_view &&
                       view.projection == targets.ao_projection;
   if (targets.reused_ao) return false;
   const int w = settings.width, h = settings.height;
@@ -144,6 +162,14 @@ bool ao_passes(const Frame& frame) {
   frame_view.nearest_depth = static_cast<float>(std::max(centre_distance - frame.scene.radius(), view.near));
   frame_view.scene_radius = static_cast<float>(frame.scene.radius());
   ssao::update_for_frame(params, settings.ao_settings, frame_view);
+  if (view.module) {
+    // Algorithm 2 maps every sample itself and reads the full-resolution depth: no depth chain, and
+    // no radius is skipped by a screen-space size that has no meaning here.
+    params.radius_range = glm::ivec4(0, params.counts.y, settings.ao_settings.skip_background ? 0 : 1, 0);
+    params.lods_0_3 = glm::ivec4(0);
+    params.config.x = 0;
+    params.radius_4_bias.w = 0.0f;
+  }
 
   // Levels are only built when some radius in use reads one.
   int deepest = 0;
@@ -167,6 +193,10 @@ bool ao_passes(const Frame& frame) {
   gl::api.Uniform1f(targets.ssao_inverse_far, inverse_far(view));
   bind_texture(0, targets.linear_depth);
   bind_texture(1, targets.normal);
+  if (view.module) {
+    bind_texture(2, targets.positions);
+    gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, targets.module_ubo.id());
+  }
   gl::api.BindImageTexture(0, targets.ao_raw.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl::api.DispatchCompute(groups(ao_w, SSAO_GROUP_SIZE), groups(ao_h, SSAO_GROUP_SIZE), 1);
   gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -232,6 +262,10 @@ void present_pass(const Frame& frame, const PresentTarget& target, float fade) {
 void render_view(const Frame& frame, const PresentTarget& target, float fade) {
   ViewTargets& targets = frame.targets;
   const FrameSettings& settings = targets.settings();
+  if (frame.view.module) {
+    const shared_layout::ModuleParams params = module_params(*frame.view.module);
+    detail::update_uniform_buffer(targets.module_ubo, &params, sizeof params);
+  }
   switch (settings.prepass) {
     case Prepass::on: targets.prepass_now = true; break;
     case Prepass::off: targets.prepass_now = false; break;

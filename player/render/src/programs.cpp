@@ -70,18 +70,38 @@ const gl::Program* Programs::present(Output output, bool srgb, std::string& erro
   return &program;
 }
 
-const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error) {
-  gl::Program& program = ssao_[index(estimator)][index(precision)];
+const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error, bool modules) {
+  const size_t kind = modules ? 1 : 0;
+  gl::Program& program = ssao_[kind][index(estimator)][index(precision)];
   if (!program) {
+    if (modules && estimator == ssao::Estimator::horizon) {
+      error = "estimator: horizon searches screen-space slices and has no light field form; a modules display takes "
+              "sphere or hemisphere";
+      return nullptr;
+    }
     const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n" +
-                                (precision == ssao::Precision::mediump ? "#define AO_MEDIUMP 1\n" : "");
+                                (precision == ssao::Precision::mediump ? "#define AO_MEDIUMP 1\n" : "") +
+                                (modules ? "#define LIGHTFIELD_MODULES 1\n" : "");
     if (!build_compute(program, "ssao.comp", defines, error)) return nullptr;
-    ssao_inverse_far_[index(estimator)][index(precision)] = gl::uniform(program, "u_inverse_far");
-    ssao_defines_[index(estimator)][index(precision)] = defines;
-    detail::assign_units(program, {"u_linear_depth", "u_normal"});
+    ssao_inverse_far_[kind][index(estimator)][index(precision)] = gl::uniform(program, "u_inverse_far");
+    ssao_defines_[kind][index(estimator)][index(precision)] = defines;
+    detail::assign_units(program, {"u_linear_depth", "u_normal", "u_positions"});
     gl::api.UseProgram(0);
   }
   return &program;
+}
+
+bool Programs::build_module_programs(std::string& error) {
+  if (module_gbuffer_plain.program) return true;
+  const std::string modules = "#define LIGHTFIELD_MODULES 1\n";
+  if (!build_raster(module_gbuffer_plain, "gbuffer.frag", modules, error) ||
+      !build_raster(module_gbuffer_textured, "gbuffer.frag", modules + "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+      !build_raster(module_depth_only, "depth_only.frag", modules, error)) {
+    module_gbuffer_plain = RasterProgram{};
+    return false;
+  }
+  gl::api.UseProgram(0);
+  return true;
 }
 
 }  // namespace render

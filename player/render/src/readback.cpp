@@ -112,4 +112,20 @@ WorldSurface read_world_surface(const ViewTargets& targets, const View& view) {
   return surface;
 }
 
+WorldSurface read_module_surface(const ViewTargets& targets) {
+  WorldSurface surface;
+  surface.width = targets.settings().width;
+  surface.height = targets.settings().height;
+  surface.position = read_rgba_float(targets.positions, surface.width, surface.height);
+  surface.depth = read_linear_depth(targets);
+  const std::vector<glm::vec3> normals = read_view_normals(targets);  // physical axes are the world's
+  surface.normal.resize(normals.size() * 4);
+  for (size_t i = 0; i < normals.size(); ++i) {
+    const float object = surface.position[i * 4 + 3];
+    for (int c = 0; c < 3; ++c) surface.normal[i * 4 + static_cast<size_t>(c)] = object > 0.0f ? normals[i][c] : 0.0f;
+    surface.normal[i * 4 + 3] = object;
+  }
+  return surface;
+}
+
 }  // namespace render

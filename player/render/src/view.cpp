@@ -13,3 +13,17 @@ View view_of(const scene::Camera& camera) {
 }
 
 }  // namespace render
+
+namespace render {
+
+View module_view(const lightfield::Module& module, const lightfield::RoiTransform& roi, double seed_cell) {
+  View view;
+  view.view = roi.world_to_physical();
+  view.near = module.observer_distance - module.z_front;
+  view.far = module.observer_distance - module.z_back;
+  view.eye = roi.to_world({module.x, module.observer_height, module.z});
+  view.module = ModuleView{module, roi, seed_cell};
+  return view;
+}
+
+}  // namespace render

@@ -13,17 +13,18 @@ void ViewTargets::reset_history() {
 }
 
 bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                            bool srgb_target, std::string& error) {
+                            bool srgb_target, std::string& error, bool modules) {
   if (settings.width < 1 || settings.height < 1 || settings.width > caps.max_texture_size ||
       settings.height > caps.max_texture_size) {
     error = "--size: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " is outside 1.." +
             std::to_string(caps.max_texture_size) + " per side";
     return false;
   }
-  ssao_program = programs.ssao(settings.ao_settings.estimator, settings.ao_settings.precision, error);
+  if (modules && !programs.build_module_programs(error)) return false;
+  ssao_program = programs.ssao(settings.ao_settings.estimator, settings.ao_settings.precision, error, modules);
   if (ssao_program == nullptr) return false;
-  ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator, settings.ao_settings.precision);
-  ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision);
+  ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
+  ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
   present_program = programs.present(settings.output, srgb_target, error);
   if (present_program == nullptr) return false;
   settings_ = settings;
@@ -35,7 +36,8 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
   for (int direction = 0; direction < 2; ++direction)
     blur_params[direction] = ssao::make_blur_params(settings.blur, direction, ao_width(), ao_height());
 
-  const bool reallocate = w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || !gbuffer_fbo;
+  const bool reallocate =
+      w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || modules != modules_ || !gbuffer_fbo;
   if (reallocate) {
     depth_levels = ssao::depth_chain_levels(w, h);
     albedo = make_target(GL_RGBA8, w, h);
@@ -52,8 +54,10 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal.id(), 0);
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, linear_depth.id(), 0);
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    gl::api.DrawBuffers(3, buffers);
+    positions = modules ? make_target(GL_RGBA32F, w, h) : gl::Texture{};
+    if (modules) gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_TEXTURE_2D, positions.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    gl::api.DrawBuffers(modules ? 4 : 3, buffers);
     const GLenum status = gl::api.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -67,6 +71,9 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
       blur_ubo[direction] = make_uniform_buffer(&blur_params[direction], sizeof blur_params[direction]);
     shared_layout::CompositeParams composite{};
     composite_ubo = make_uniform_buffer(&composite, sizeof composite);
+    shared_layout::ModuleParams module_params{};
+    module_ubo = modules ? make_uniform_buffer(&module_params, sizeof module_params) : gl::Buffer{};
+    modules_ = modules;
     width_ = w;
     height_ = h;
     half_ = settings.ao_settings.half_resolution;

@@ -17,6 +17,10 @@ struct RenderOptions {
   std::string platform = "auto";
   std::string dump_dir;         // empty: no dump
   int frames = 1;               // frames rendered; times are the median over all but the first
+  // Light field output (--display): a display file; per-view PNGs; a quilt's panel image; the probe.
+  std::string display, modules_dir, native_output;
+  bool view_probe = false;
+  bool estimator_given = false;  // --estimator was on the command line (not the default)
   scene::Framing framing;
   render::FrameSettings frame;
 };

@@ -52,6 +52,7 @@ namespace gl {
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                  \
   X(PFNGLUNIFORM1IPROC, Uniform1i) X(PFNGLUNIFORM1FPROC, Uniform1f)                   \
   X(PFNGLUNIFORM2IPROC, Uniform2i) X(PFNGLUNIFORM4FVPROC, Uniform4fv)                 \
+  X(PFNGLUNIFORM4FPROC, Uniform4f) X(PFNGLUNIFORM4IPROC, Uniform4i) X(PFNGLSCISSORPROC, Scissor) \
   X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                                      \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                      \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute) X(PFNGLMEMORYBARRIERPROC, MemoryBarrier) \

@@ -1,6 +1,7 @@
 #pragma once
-// Every compiled program the passes use, built once per context. SSAO variants (one per estimator
-// and precision) are compiled on first use and kept.
+// Every compiled program the passes use, built once per context. SSAO variants (one per estimator,
+// precision and view kind) and the light field modules' G-buffer programs are compiled on first use
+// and kept.
 #include "gl/caps.h"
 #include "gl/objects.h"
 #include "render/settings.h"
@@ -22,16 +23,22 @@ class Programs {
   bool build(const gl::Caps& caps, std::string& error);
   // The SSAO program for `estimator` at `precision` (mediump: the AO_MEDIUMP variant), compiled now if
   // it was not yet; null and `error` on failure.
-  const gl::Program* ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error);
-  GLint ssao_inverse_far(ssao::Estimator estimator, ssao::Precision precision) const {
-    return ssao_inverse_far_[index(estimator)][index(precision)];
+  // `modules`: Algorithm 2 for a light field display's optical module (LIGHTFIELD_MODULES); the
+  // horizon estimator has no such form and fails with a message saying so.
+  const gl::Program* ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error, bool modules = false);
+  GLint ssao_inverse_far(ssao::Estimator estimator, ssao::Precision precision, bool modules = false) const {
+    return ssao_inverse_far_[modules ? 1 : 0][index(estimator)][index(precision)];
   }
   // The #defines that variant was compiled with (empty before it was): what really selects it.
-  std::string_view ssao_defines(ssao::Estimator estimator, ssao::Precision precision) const {
-    return ssao_defines_[index(estimator)][index(precision)];
+  std::string_view ssao_defines(ssao::Estimator estimator, ssao::Precision precision, bool modules = false) const {
+    return ssao_defines_[modules ? 1 : 0][index(estimator)][index(precision)];
   }
+  // The G-buffer and prepass programs of light field modules (world-to-image per vertex, positions
+  // texture), compiled on first call.
+  bool build_module_programs(std::string& error);
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
+  RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs
   gl::Program depth_chain, blur_gaussian, blur_bilateral, upsample;
   GLint depth_chain_source_level = -1;
   // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not.
@@ -43,11 +50,12 @@ class Programs {
  private:
   static size_t index(ssao::Estimator estimator) { return static_cast<size_t>(estimator); }
   static size_t index(ssao::Precision precision) { return static_cast<size_t>(precision); }
-  std::array<std::array<gl::Program, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_{};
+  template <typename T>
+  using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
+  PerVariant<gl::Program> ssao_{};
   std::array<std::array<gl::Program, 2>, std::size(kOutputNames)> present_{};
-  std::array<std::array<std::string, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_defines_{};
-  std::array<std::array<GLint, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)> ssao_inverse_far_{
-      {{-1, -1}, {-1, -1}, {-1, -1}}};
+  PerVariant<std::string> ssao_defines_{};
+  PerVariant<GLint> ssao_inverse_far_{};
 };
 
 }  // namespace render

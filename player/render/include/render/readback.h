@@ -32,5 +32,8 @@ struct WorldSurface {
   std::vector<float> depth;             // 1 channel
 };
 WorldSurface read_world_surface(const ViewTargets& targets, const View& view);
+// Light field modules: the same from the G-buffer's positions texture (what Algorithm 2 read), with
+// depth the distance from the observer line in physical units.
+WorldSurface read_module_surface(const ViewTargets& targets);
 
 }  // namespace render

@@ -15,8 +15,10 @@ class ViewTargets {
   // (Re)allocates the textures when the size or AO resolution changed and fixes the per-frame
   // constants for these settings and a scene of `scene_radius`. Returns false and says why.
   // `srgb_target`: the framebuffer the view is presented into encodes sRGB itself.
+  // `modules`: the targets of light field modules (a positions texture for Algorithm 2, the
+  // module's uniform block, the LIGHTFIELD_MODULES programs).
   bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                 bool srgb_target, std::string& error);
+                 bool srgb_target, std::string& error, bool modules = false);
   // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
   void reset_history();
 
@@ -26,9 +28,13 @@ class ViewTargets {
   // The AO texture the present pass reads: raw, or blurred when a blur is on (at the AO resolution).
   const gl::Texture& ao_result() const { return settings_.blur.mode != ssao::Blur::off ? ao_blurred : ao_raw; }
 
+  bool modules() const { return modules_; }
+
   gl::Texture albedo, normal, linear_depth, depth, ao_raw, ao_temp, ao_blurred;
+  gl::Texture positions;  // modules only: world position per pixel, a = 1 on objects
   gl::Framebuffer gbuffer_fbo;
   gl::Buffer ssao_ubo, blur_ubo[2], composite_ubo;
+  gl::Buffer module_ubo;  // modules only: shared_layout::ModuleParams of the module being drawn
   shared_layout::SsaoParams ssao_params{};
   shared_layout::BlurParams blur_params[2]{};
   const gl::Program* ssao_program = nullptr;
@@ -49,7 +55,7 @@ class ViewTargets {
  private:
   FrameSettings settings_;
   int width_ = 0, height_ = 0;
-  bool half_ = false;
+  bool half_ = false, modules_ = false;
 };
 
 }  // namespace render

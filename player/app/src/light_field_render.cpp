@@ -1,0 +1,224 @@
+#include "light_field_render.h"
+
+#include "gl/caps.h"
+#include "gl/gl_api.h"
+#include "image_io.h"
+#include "platform/platform.h"
+#include "render/light_field.h"
+#include "render/readback.h"
+#include "scene/load.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+
+namespace app {
+namespace {
+
+bool make_folder(const std::string& dir, std::string& error) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) error = dir + ": cannot create the folder (" + ec.message() + ")";
+  return !ec;
+}
+
+nlohmann::json vec3_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json matrix_json(const glm::dmat4& m) {
+  nlohmann::json columns = nlohmann::json::array();
+  for (int c = 0; c < 4; ++c) columns.push_back({m[c][0], m[c][1], m[c][2], m[c][3]});
+  return columns;
+}
+
+// DIR/module-K/ (modules) or DIR/view-K/ (quilt views): the AO before and after the blur, the world
+// position and normal and the depth of the visible surface, and what the view was.
+bool dump_view(const std::string& dir, int k, const render::View& view, const render::LightFieldRenderer& renderer,
+               std::string& error) {
+  const render::ViewTargets& targets = renderer.targets();
+  const std::string base = dir + "/" + (view.module ? "module-" : "view-") + std::to_string(k);
+  if (!make_folder(base, error)) return false;
+  const int w = targets.settings().width, h = targets.settings().height;
+  const render::WorldSurface surface = view.module ? render::read_module_surface(targets) : render::read_world_surface(targets, view);
+  const std::vector<glm::vec2> raw_low = render::read_ao(targets.ao_raw, targets.ao_width(), targets.ao_height());
+  const std::vector<glm::vec2> final_ao = render::read_ao_full(renderer.programs(), targets);
+  const int shift = targets.settings().ao_settings.half_resolution ? 1 : 0;
+  std::vector<float> raw(static_cast<size_t>(w) * static_cast<size_t>(h)), blurred(raw.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      raw[i] = raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(targets.ao_width()) + static_cast<size_t>(x >> shift)].x;
+      blurred[i] = final_ao[i].x;
+    }
+  if (!write_exr(base + "/ao_raw.exr", w, h, 1, raw, {"Y"}, error) ||
+      !write_exr(base + "/ao_blurred.exr", w, h, 1, blurred, {"Y"}, error) ||
+      !write_exr(base + "/position.exr", w, h, 4, surface.position, {"R", "G", "B", "A"}, error) ||
+      !write_exr(base + "/normal.exr", w, h, 4, surface.normal, {"R", "G", "B", "A"}, error) ||
+      !write_exr(base + "/depth.exr", w, h, 1, surface.depth, {"Y"}, error))
+    return false;
+  nlohmann::json doc = {{"index", k}, {"width", w}, {"height", h}};
+  if (view.module) {
+    const lightfield::Module& m = view.module->module;
+    doc["module"] = {{"x", m.x},
+                     {"z", m.z},
+                     {"observer_distance", m.observer_distance},
+                     {"observer_height", m.observer_height},
+                     {"screen_height", m.screen_height},
+                     {"footprint", {m.footprint0, m.footprint1}},
+                     {"z_front", m.z_front},
+                     {"z_back", m.z_back}};
+    doc["world_to_physical"] = {{"scale", view.module->roi.scale}, {"offset", vec3_json(view.module->roi.offset)}};
+    doc["files"] = {{"position.exr", "world position from the positions texture (Algorithm 2's input); A = 1 on objects"},
+                    {"depth.exr", "distance from the observer line in physical units (D - z), 0 on background"},
+                    {"normal.exr", "world-space unit normal; A as above"},
+                    {"ao_raw.exr", "AO before blur"},
+                    {"ao_blurred.exr", "AO after blur, as shaded"}};
+  } else {
+    doc["eye"] = vec3_json(view.eye);
+    doc["view"] = matrix_json(view.view);
+    doc["projection"] = matrix_json(view.projection);
+    doc["files"] = {{"position.exr", "world position; A = 1 on objects"},
+                    {"depth.exr", "linear view depth, 0 on background"},
+                    {"normal.exr", "world-space unit normal"},
+                    {"ao_raw.exr", "AO before blur"},
+                    {"ao_blurred.exr", "AO after blur, as shaded"}};
+  }
+  doc["image_rows"] = "EXR rows are top to bottom";
+  std::ofstream json(base + "/view.json");
+  json << std::setw(2) << doc << "\n";
+  if (!json) {
+    error = base + "/view.json: cannot write";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int run_render_light_field(const RenderOptions& options, std::ostream& out, std::ostream& err) {
+  std::string error;
+  lightfield::Display display;
+  if (!lightfield::load_display(options.display, display, error)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const bool quilt = display.type == lightfield::DisplayType::quilt;
+  if (!options.native_output.empty() && !quilt) {
+    err << "error: --native: " << options.display << " describes optical modules; only a quilt display has a native panel image\n";
+    return 2;
+  }
+  if (options.view_probe && display.views() > 256) {
+    err << "error: --view-probe: " << options.display << " has " << display.views()
+        << " views; the probe draws view k as the 8-bit grey k, so at most 256\n";
+    return 2;
+  }
+  render::FrameSettings settings = options.frame;
+  if (!quilt && settings.ao_settings.estimator == ssao::Estimator::horizon) {
+    if (options.estimator_given) {
+      err << "error: --estimator: horizon searches screen-space slices and has no light field form; " << options.display
+          << " describes optical modules, which take sphere or hemisphere\n";
+      return 2;
+    }
+    settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+    out << "estimator: hemisphere (the default, horizon, has no form for optical modules; Algorithm 2 runs hemisphere)\n";
+  }
+
+  scene::Scene scene;
+  if (!scene::load(options.scene, scene, error, err)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  platform::Options platform_options;
+  platform_options.name = options.platform;
+  platform_options.size = {64, 64};  // every view renders into its own framebuffer
+  auto platform = gl::open_context(platform_options, error);
+  if (!platform) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const gl::Caps caps = gl::query_caps();
+  gl::install_debug_log(caps, false);
+  render::LightFieldRenderer renderer;
+  const scene::Camera camera = scene::frame(scene.bounds, options.framing, display.quilt.view_width, display.quilt.view_height);
+  if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, camera, error)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+
+  const int frames = std::max(1, options.frames);
+  std::vector<double> frame_ms;
+  std::string dump_error;
+  for (int frame = 0; frame < frames; ++frame) {
+    const bool last = frame + 1 == frames;
+    const auto start = std::chrono::steady_clock::now();
+    render::LightFieldRenderer::AfterView after;
+    if (last && !options.dump_dir.empty() && !options.view_probe)
+      after = [&](int k, const render::View& view, const render::ViewTargets&) {
+        if (dump_error.empty()) dump_view(options.dump_dir, k, view, renderer, dump_error);
+      };
+    renderer.render(options.view_probe, after);
+    gl::api.Finish();
+    if (!after) frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  if (!renderer.gl_error().empty()) {
+    err << "error: " << renderer.gl_error() << "\n";
+    return 1;
+  }
+  if (!dump_error.empty()) {
+    err << "error: " << dump_error << "\n";
+    return 1;
+  }
+  const glm::ivec2 output = renderer.output_size(), view_size = renderer.view_size();
+  if (!write_png(options.output, output.x, output.y, renderer.read_output(), error)) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  if (!options.modules_dir.empty()) {
+    if (!make_folder(options.modules_dir, error)) {
+      err << "error: " << error << "\n";
+      return 1;
+    }
+    for (int k = 0; k < renderer.views(); ++k) {
+      const std::string path = options.modules_dir + "/" + (quilt ? "view-" : "module-") + std::to_string(k) + ".png";
+      if (!write_png(path, view_size.x, view_size.y, renderer.read_view(k), error)) {
+        err << "error: " << error << "\n";
+        return 1;
+      }
+    }
+  }
+  if (!options.native_output.empty()) {
+    const glm::ivec2 native = renderer.native_size();
+    if (!write_png(options.native_output, native.x, native.y, renderer.read_native(), error)) {
+      err << "error: " << error << "\n";
+      return 1;
+    }
+  }
+
+  const std::string what = quilt ? "views" : "modules";
+  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.display << ": " << renderer.views() << " "
+      << what << " of " << view_size.x << "x" << view_size.y << ", " << platform->name() << " (" << caps.renderer << ")\n";
+  out << renderer.rendered_views() << " of " << renderer.views() << " " << what << " rendered";
+  if (renderer.rendered_views() < renderer.views())
+    out << " (" << renderer.views() - renderer.rendered_views() << " see nothing of the scene and show the background)";
+  out << (options.view_probe ? "; view probe: view k drawn as grey level k" : "") << "\n";
+  if (!frame_ms.empty()) {
+    std::sort(frame_ms.begin(), frame_ms.end());
+    const double median = frame_ms[frame_ms.size() / 2];
+    out << "frame (CPU clock around glFinish), median of " << frame_ms.size() << ": " << std::fixed << std::setprecision(3)
+        << median << " ms, " << median / std::max(1, renderer.rendered_views()) << " ms per rendered view\n";
+  }
+  out << "wrote " << options.output << " (" << (quilt ? "quilt" : "montage") << ", " << output.x << "x" << output.y << ")\n";
+  if (!options.modules_dir.empty()) out << "wrote " << renderer.views() << " images to " << options.modules_dir << "\n";
+  if (!options.native_output.empty())
+    out << "wrote " << options.native_output << " (native panel image, " << renderer.native_size().x << "x"
+        << renderer.native_size().y << ")\n";
+  if (!options.dump_dir.empty() && !options.view_probe)
+    out << "dumped each view's AO, position, normal, depth and view.json to " << options.dump_dir << "\n";
+  return 0;
+}
+
+}  // namespace app

@@ -30,6 +30,19 @@ std::optional<RoiTransform> roi_transform(const Box& world, const Box& physical)
   return t;
 }
 
+Box world_roi(const ModulesDisplay& display, const Box& scene_bounds) {
+  if (display.world_roi) return *display.world_roi;
+  const glm::dvec3 size = scene_bounds.max - scene_bounds.min;
+  const double thinnest = std::max({size.x, size.y, size.z, 1e-6}) * 1e-3;
+  Box box = scene_bounds;
+  for (int axis = 0; axis < 3; ++axis)
+    if (size[axis] < thinnest) {
+      box.min[axis] -= thinnest * 0.5;
+      box.max[axis] += thinnest * 0.5;
+    }
+  return box;
+}
+
 Module module_of(const ModulesDisplay& display, int k) {
   Module m;
   m.x = display.module_x[static_cast<size_t>(k)];
@@ -93,7 +106,7 @@ glm::dvec4 clip_position(const Module& m, const glm::dvec3& q) {
 double edge_error_pixels(const Module& m, const glm::dvec3& a, const glm::dvec3& b) {
   const glm::dvec4 clip_a = clip_position(m, a), clip_b = clip_position(m, b);
   double worst = 0.0;
-  constexpr int kSteps = 64;
+  constexpr int kSteps = 16;  // the error along an edge is one smooth bump: 16 samples find its top within a few percent
   for (int step = 1; step < kSteps; ++step) {
     const double t = static_cast<double>(step) / kSteps;
     const glm::dvec3 q = a + t * (b - a);

@@ -43,6 +43,9 @@ struct RoiTransform {
 };
 // Empty when either box is not positive along every axis.
 std::optional<RoiTransform> roi_transform(const Box& world, const Box& physical);
+// The world box a display maps: its own roi.world_min/max, or the scene's bounds, given a thousandth
+// of their largest side along any axis where they are flat (a single quad still maps to a box).
+Box world_roi(const ModulesDisplay& display, const Box& scene_bounds);
 
 // One module as the shaders see it, in physical units.
 struct Module {

@@ -201,6 +201,12 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   const std::string what = quilt ? "views" : "modules";
   out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.display << ": " << renderer.views() << " "
       << what << " of " << view_size.x << "x" << view_size.y << ", " << platform->name() << " (" << caps.renderer << ")\n";
+  const render::SubdivisionReport& split = renderer.subdivision();
+  if (split.triangles_after > split.triangles_before || split.capped)
+    out << "long edges split for the modules' transform: " << split.triangles_before << " -> " << split.triangles_after
+        << " triangles, worst edge " << std::fixed << std::setprecision(2) << split.worst_before_px << " -> "
+        << split.worst_after_px << " px from where the modules show it"
+        << (split.capped ? " (stopped at the triangle budget: above the 0.5 px bound)" : "") << "\n";
   out << renderer.rendered_views() << " of " << renderer.views() << " " << what << " rendered";
   if (renderer.rendered_views() < renderer.views())
     out << " (" << renderer.views() - renderer.rendered_views() << " see nothing of the scene and show the background)";

@@ -15,19 +15,6 @@ float srgb_encode(float linear) {
   return c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-// A world box with some thickness along every axis: a flat scene (one quad) still maps to a box.
-lightfield::Box thick(const scene::Bounds& bounds) {
-  const glm::dvec3 size = bounds.max - bounds.min;
-  const double floor = std::max({size.x, size.y, size.z, 1e-6}) * 1e-3;
-  lightfield::Box box{bounds.min, bounds.max};
-  for (int axis = 0; axis < 3; ++axis)
-    if (size[axis] < floor) {
-      box.min[axis] -= floor * 0.5;
-      box.max[axis] += floor * 0.5;
-    }
-  return box;
-}
-
 }  // namespace
 
 bool LightFieldRenderer::init(const gl::Caps& caps, std::string& error) {
@@ -43,10 +30,28 @@ bool LightFieldRenderer::init(const gl::Caps& caps, std::string& error) {
   return true;
 }
 
-bool LightFieldRenderer::upload(const scene::Scene& scene, std::string& error) {
+bool LightFieldRenderer::upload(const scene::Scene& scene, std::string&) {
   bounds_ = scene.bounds;
-  return scene_.upload(scene, caps_, error);
+  source_ = std::make_shared<const scene::Scene>(scene);
+  uploaded_ = false;
+  return true;
 }
+
+namespace {
+
+// Whether two displays place vertices alike (the subdivided scene of one fits the other).
+bool same_geometry(const lightfield::Display& a, const lightfield::Display& b) {
+  if (a.type != b.type) return false;
+  if (a.type == lightfield::DisplayType::quilt) return true;
+  const lightfield::ModulesDisplay &x = a.modules, &y = b.modules;
+  const auto same_box = [](const lightfield::Box& p, const lightfield::Box& q) { return p.min == q.min && p.max == q.max; };
+  return x.screen_width == y.screen_width && x.screen_height == y.screen_height && x.observer_distance == y.observer_distance &&
+         x.observer_height == y.observer_height && x.module_x == y.module_x && x.module_z == y.module_z && x.width == y.width &&
+         x.height == y.height && x.footprint == y.footprint && same_box(x.physical_roi, y.physical_roi) &&
+         x.world_roi.has_value() == y.world_roi.has_value() && (!x.world_roi || same_box(*x.world_roi, *y.world_roi));
+}
+
+}  // namespace
 
 bool LightFieldRenderer::configure(const lightfield::Display& display, const FrameSettings& settings,
                                    const scene::Camera& camera, std::string& error) {
@@ -63,6 +68,26 @@ bool LightFieldRenderer::configure(const lightfield::Display& display, const Fra
   // Views share one set of targets, so the prepass's automatic choice (measured per view over frames)
   // has nothing to measure: it stays off unless asked for.
   if (settings_.prepass == Prepass::automatic) settings_.prepass = Prepass::off;
+  if (source_ == nullptr) {
+    error = "no scene uploaded";
+    return false;
+  }
+  if (!uploaded_ || !same_geometry(display, uploaded_for_)) {
+    subdivision_ = SubdivisionReport{};
+    const scene::Scene* to_upload = source_.get();
+    scene::Scene subdivided;
+    if (modules) {
+      const lightfield::ModulesDisplay& m = display.modules;
+      const auto roi = lightfield::roi_transform(lightfield::world_roi(m, {bounds_.min, bounds_.max}), m.physical_roi);
+      if (roi) {
+        subdivided = subdivide_for_modules(*source_, m, *roi, kMaxEdgeErrorPx, subdivision_);
+        to_upload = &subdivided;
+      }
+    }
+    if (!scene_.upload(*to_upload, caps_, error)) return false;
+    uploaded_ = true;
+    uploaded_for_ = display;
+  }
   if (!targets_.configure(programs_, caps_, settings_, scene_.radius(), false, error, modules)) return false;
 
   const int count = display.views();
@@ -71,7 +96,7 @@ bool LightFieldRenderer::configure(const lightfield::Display& display, const Fra
   skipped_.assign(static_cast<size_t>(count), false);
   if (modules) {
     const lightfield::ModulesDisplay& m = display.modules;
-    const lightfield::Box world = m.world_roi ? *m.world_roi : thick(bounds_);
+    const lightfield::Box world = lightfield::world_roi(m, {bounds_.min, bounds_.max});
     const std::optional<lightfield::RoiTransform> roi = lightfield::roi_transform(world, m.physical_roi);
     if (!roi) {
       error = "display: roi: the world box and the physical box need a positive size along every axis";

@@ -10,6 +10,7 @@
 // image the scene's bounds cannot reach are not rendered (their tile shows the background).
 #include "gl/caps.h"
 #include "lightfield/display_file.h"
+#include "render/edge_subdivision.h"
 #include "render/passes.h"
 #include "render/programs.h"
 #include "render/scene_gpu.h"
@@ -29,9 +30,12 @@ namespace render {
 class LightFieldRenderer {
  public:
   bool init(const gl::Caps& caps, std::string& error);
+  // Keeps the scene; configure() uploads it, for modules with its long edges split first.
   bool upload(const scene::Scene& scene, std::string& error);
   // `settings`' size is replaced by the module's or view's; `camera` is the central camera of a quilt
   // (unused for modules, whose geometry is the display's). Errors name the setting or the display.
+  // For modules, edges that the per-vertex transform would draw more than kMaxEdgeErrorPx from where
+  // the module shows them are split (edge_subdivision.h) before the upload.
   bool configure(const lightfield::Display& display, const FrameSettings& settings, const scene::Camera& camera,
                  std::string& error);
 
@@ -40,6 +44,9 @@ class LightFieldRenderer {
   // Renders every view and encodes the output. `probe`: instead of the scene, view k is the flat colour
   // (k, k, k) / 255, so the interleave can be checked subpixel by subpixel.
   void render(bool probe = false, const AfterView& after_view = {});
+
+  static constexpr double kMaxEdgeErrorPx = 0.5;
+  const SubdivisionReport& subdivision() const { return subdivision_; }
 
   int views() const { return static_cast<int>(views_.size()); }
   int rendered_views() const;      // views not skipped in the last render()
@@ -65,6 +72,10 @@ class LightFieldRenderer {
  private:
   gl::Caps caps_;
   Programs programs_;
+  std::shared_ptr<const scene::Scene> source_;
+  SubdivisionReport subdivision_;
+  bool uploaded_ = false;
+  lightfield::Display uploaded_for_;  // the display whose geometry the uploaded scene was split for
   SceneGpu scene_;
   scene::Bounds bounds_;
   ViewTargets targets_;

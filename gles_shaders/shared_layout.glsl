@@ -76,7 +76,8 @@ struct ModuleParams {
   vec4 module;             // x: P.x, y: P.z, z: D (observer distance), w: y_obs (observer height)
   vec4 screen;             // x, y: footprint x0, x1; z: screen height; w: physical units per world unit
   vec4 depth;              // x: z_front, y: z_back (the physical z range rasterised); z: 1 / (D - z_back); w: world seed cell
-  ivec4 size;              // x, y: the module's image size
+  ivec4 size;              // x, y: the module's image size; z: 1 turns samples by the pixel tile as
+                           // Algorithm 1 does (only to measure what world seeding buys); w: unused
 };
 
 #endif

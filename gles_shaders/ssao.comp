@@ -226,7 +226,9 @@ void main() {
 #ifdef LIGHTFIELD_MODULES
   // Algorithm 2, rows 1-2: the world position from the positions texture, not from depth.
   highp vec3 position = texelFetch(u_positions, pixel, 0).xyz;
-  highp vec2 turn = world_turn(position);
+  highp vec2 turn = lightfield_module.size.z == 1
+      ? ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy
+      : world_turn(position);
 #else
   highp vec3 position = view_position(pixel, depth);
   highp vec2 turn = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy;

@@ -3,12 +3,14 @@
 // pixels between where the rasteriser draws an edge point and where the module shows it. (2) The
 // frame cost of 1, 8, 32 and 80 modules at 1024x768 (CPU clock around glFinish; llvmpipe has no
 // timer queries), with and without AO, so that the SSAO cost per module can be read off. (3) A
-// 45-view quilt.
+// 45-view quilt. (4) View consistency: the spread of AO for one world point across the modules that
+// see it, against the spread between neighbouring pixels of one module (its noise).
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "lightfield/display_file.h"
 #include "platform/platform.h"
 #include "render/light_field.h"
+#include "render/readback.h"
 #include "scene/load.h"
 
 #include <CLI/CLI.hpp>
@@ -133,6 +135,98 @@ bool time_display(const gl::Caps& caps, const scene::Scene& scene, const lightfi
   return true;
 }
 
+struct ModuleCapture {
+  render::WorldSurface surface;
+  std::vector<float> raw, shaded;  // AO before the blur and as shaded, full resolution, rows bottom-up
+};
+
+// Mean over points of the standard deviation of a set of AO values. Points whose AO is near zero are
+// left out: an open face is unoccluded whatever the sample turns, and would dilute the noise.
+struct Spread {
+  double sum = 0.0;
+  long count = 0;
+  void add(const std::vector<float>& values) {
+    if (values.size() < 2) return;
+    double mean = 0.0, square = 0.0;
+    for (float v : values) mean += v;
+    mean /= static_cast<double>(values.size());
+    if (mean < 0.05) return;
+    for (float v : values) square += (v - mean) * (v - mean);
+    sum += std::sqrt(square / static_cast<double>(values.size() - 1));
+    ++count;
+  }
+  double value() const { return count > 0 ? sum / count : 0.0; }
+};
+
+void measure_consistency(const gl::Caps& caps, const scene::Scene& scene, const lightfield::Display& display, bool pixel_turns,
+                         ssao::Blur blur) {
+  render::LightFieldRenderer renderer;
+  render::FrameSettings settings;
+  settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+  settings.ao_settings.half_resolution = false;
+  settings.blur.mode = blur;
+  std::string error;
+  if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, {}, error)) {
+    std::cerr << "lfbench: " << error << "\n";
+    return;
+  }
+  renderer.set_pixel_turns(pixel_turns);
+  std::vector<ModuleCapture> captures(static_cast<size_t>(renderer.views()));
+  renderer.render(false, [&](int k, const render::View&, const render::ViewTargets& targets) {
+    ModuleCapture& c = captures[static_cast<size_t>(k)];
+    c.surface = render::read_module_surface(targets);
+    for (const glm::vec2& ao : render::read_ao(targets.ao_raw, targets.ao_width(), targets.ao_height())) c.raw.push_back(ao.x);
+    for (const glm::vec2& ao : render::read_ao_full(renderer.programs(), targets)) c.shaded.push_back(ao.x);
+  });
+  const int w = display.modules.width, h = display.modules.height;
+  const double pixel_world = (display.modules.footprint.y - display.modules.footprint.x) / w / renderer.view(0).module->roi.scale;
+  Spread across_raw, across_shaded, within_raw, within_shaded;  // raw: before the blur; shaded: after
+  for (int k = 0; k < renderer.views(); ++k) {
+    const ModuleCapture& c = captures[static_cast<size_t>(k)];
+    if (c.surface.position.empty()) continue;
+    for (int y = 1; y + 1 < h; y += 2)
+      for (int x = 1; x + 1 < w; x += 2) {
+        const size_t i = static_cast<size_t>(y * w + x);
+        if (c.surface.position[i * 4 + 3] <= 0.0f) continue;
+        // Within the module: the 3x3 neighbourhood, where it is all surface.
+        std::vector<float> near_raw, near_shaded;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const size_t j = static_cast<size_t>((y + dy) * w + x + dx);
+            if (c.surface.position[j * 4 + 3] <= 0.0f) continue;
+            near_raw.push_back(c.raw[j]);
+            near_shaded.push_back(c.shaded[j]);
+          }
+        if (near_raw.size() == 9) {
+          within_raw.add(near_raw);
+          within_shaded.add(near_shaded);
+        }
+        // Across modules: the pixel of each other module that shows this point, where it is this point.
+        const glm::dvec3 world(c.surface.position[i * 4], c.surface.position[i * 4 + 1], c.surface.position[i * 4 + 2]);
+        std::vector<float> same_raw{c.raw[i]}, same_shaded{c.shaded[i]};
+        for (int j = 0; j < renderer.views(); ++j) {
+          if (j == k || captures[static_cast<size_t>(j)].surface.position.empty()) continue;
+          const render::ModuleView& mv = *renderer.view(j).module;
+          const auto image = lightfield::physical_to_image(mv.module, mv.roi.to_physical(world));
+          if (!image || image->x < 0 || image->y < 0 || image->x >= w || image->y >= h) continue;
+          const int u = static_cast<int>(image->x), v_bottom = h - 1 - static_cast<int>(image->y);
+          const size_t p = static_cast<size_t>(v_bottom * w + u);
+          const ModuleCapture& other = captures[static_cast<size_t>(j)];
+          const glm::dvec3 seen(other.surface.position[p * 4], other.surface.position[p * 4 + 1], other.surface.position[p * 4 + 2]);
+          if (other.surface.position[p * 4 + 3] <= 0.0f || glm::length(seen - world) > pixel_world) continue;  // hidden there
+          same_raw.push_back(other.raw[p]);
+          same_shaded.push_back(other.shaded[p]);
+        }
+        across_raw.add(same_raw);
+        across_shaded.add(same_shaded);
+      }
+  }
+  std::cout << std::fixed << std::setprecision(4) << std::left << std::setw(26)
+            << (pixel_turns ? "  turns by pixel tile" : "  turns by world cell") << std::setw(10) << ssao::name(blur) << std::right
+            << std::setw(12) << across_raw.value() << std::setw(12) << across_shaded.value() << std::setw(12) << within_raw.value()
+            << std::setw(12) << within_shaded.value() << std::setw(9) << across_raw.count << "\n";
+}
+
 int run(const Options& options) {
   measure_edges(options);
   if (options.edges_only) return 0;
@@ -189,6 +283,18 @@ int run(const Options& options) {
     double with_ao = 0.0, without_ao = 0.0;
     int rendered = 0;
     if (!time_display(caps, scene, quilt, with_ao, without_ao, rendered, options.frames)) return 1;
+    lightfield::Display desk;
+    if (!lightfield::load_display(options.board_dir + "/desk-8.toml", desk, error)) {
+      std::cerr << "lfbench: " << error << "\n";
+      return 1;
+    }
+    std::cout << scene.name << " on desk-8.toml (" << desk.views() << " modules of " << desk.modules.width << "x"
+              << desk.modules.height << ", hemisphere): standard deviation of AO for one world point across the modules that see it\n"
+              << "(across) and across a 3x3 pixel neighbourhood of one module (within), before the blur (raw) and after, where AO >= 0.05\n";
+    std::cout << std::left << std::setw(26) << "  sample turns" << std::setw(10) << "blur" << std::right << std::setw(12) << "across raw"
+              << std::setw(12) << "across" << std::setw(12) << "within raw" << std::setw(12) << "within" << std::setw(9) << "points" << "\n";
+    for (const bool pixel_turns : {false, true})
+      for (const ssao::Blur blur : {ssao::Blur::off, ssao::Blur::bilateral}) measure_consistency(caps, scene, desk, pixel_turns, blur);
     std::cout << "quilt " << quilt.quilt.columns << "x" << quilt.quilt.rows << " (" << rendered << " views of "
               << quilt.quilt.view_width << "x" << quilt.quilt.view_height << ") + interleave to "
               << quilt.quilt.calibration.screen_width << "x" << quilt.quilt.calibration.screen_height << ": " << with_ao

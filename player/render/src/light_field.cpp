@@ -183,6 +183,11 @@ glm::ivec2 LightFieldRenderer::native_size() const {
   return quilt() ? glm::ivec2(display_.quilt.calibration.screen_width, display_.quilt.calibration.screen_height) : glm::ivec2(0);
 }
 
+void LightFieldRenderer::set_pixel_turns(bool pixel_turns) {
+  for (View& view : views_)
+    if (view.module) view.module->pixel_turns = pixel_turns;
+}
+
 int LightFieldRenderer::rendered_views() const {
   return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false));
 }

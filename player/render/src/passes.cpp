@@ -47,7 +47,7 @@ shared_layout::ModuleParams module_params(const ModuleView& view) {
   params.module = glm::vec4(m.x, m.z, m.observer_distance, m.observer_height);
   params.screen = glm::vec4(m.footprint0, m.footprint1, m.screen_height, view.roi.scale);
   params.depth = glm::vec4(m.z_front, m.z_back, 1.0 / (m.observer_distance - m.z_back), view.seed_cell);
-  params.size = glm::ivec4(m.width, m.height, 0, 0);
+  params.size = glm::ivec4(m.width, m.height, view.pixel_turns ? 1 : 0, 0);
   return params;
 }
 

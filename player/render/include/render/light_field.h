@@ -44,6 +44,9 @@ class LightFieldRenderer {
   // Renders every view and encodes the output. `probe`: instead of the scene, view k is the flat colour
   // (k, k, k) / 255, so the interleave can be checked subpixel by subpixel.
   void render(bool probe = false, const AfterView& after_view = {});
+  // Modules turn their samples per world cell, the same in every module; `true` turns them by pixel
+  // tile as 2D views do (only to measure the difference).
+  void set_pixel_turns(bool pixel_turns);
 
   static constexpr double kMaxEdgeErrorPx = 0.5;
   const SubdivisionReport& subdivision() const { return subdivision_; }

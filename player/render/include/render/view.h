@@ -17,6 +17,7 @@ struct ModuleView {
   lightfield::Module module;
   lightfield::RoiTransform roi;
   double seed_cell = 1.0;  // world size of the cells that share one sample turn in every module
+  bool pixel_turns = false;  // turn samples by pixel tile instead (lfbench measures the difference)
 };
 
 struct View {

@@ -16,6 +16,9 @@ namespace {
 constexpr int kMaxModules = 1024;
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxQuiltSide = 64;
+// Lengths beyond this (a display a million units wide) are typos, and would overflow the products
+// the geometry forms from them.
+constexpr double kMaxMagnitude = 1e6;
 
 struct Failure {
   std::string message;
@@ -78,6 +81,7 @@ class Fields {
     else if (const auto* f = node->as_floating_point()) value = f->get();
     else fail(key, "a number " + range);
     if (!std::isfinite(value) || !in_range(value)) fail(key, "a number " + range);
+    if (std::abs(value) > kMaxMagnitude) fail(key, "a number of magnitude at most 1e6");
     return value;
   }
   long long integer(const std::string& key, long long low, long long high) const {
@@ -115,7 +119,7 @@ class Fields {
       if (const auto* i = element.as_integer()) value = static_cast<double>(i->get());
       else if (const auto* f = element.as_floating_point()) value = f->get();
       else fail_at(&element, key, expected);
-      if (!std::isfinite(value)) fail_at(&element, key, expected);
+      if (!std::isfinite(value) || std::abs(value) > kMaxMagnitude) fail_at(&element, key, expected + ", each of magnitude at most 1e6");
       out.push_back(value);
     }
     return out;
@@ -174,7 +178,7 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
     const double first = modules.number("x_first", nullptr, "(the first module's x)", any);
     const double last = modules.number("x_last", nullptr, "(the last module's x)", any);
     if (count == 1 && first != last) modules.fail("x_last", "x_first when there is one module");
-    for (long long k = 0; k < count; ++k)
+    for (long long k = 0; k < count; ++k)  // both ends at most 1e6: every position is finite
       out.module_x.push_back(count == 1 ? first : first + (last - first) * static_cast<double>(k) / static_cast<double>(count - 1));
   }
   const glm::ivec2 resolution = modules.size("resolution", kMaxImageSide, "each module's image size");
@@ -298,14 +302,20 @@ bool parse_calibration(std::string_view text, const std::string& source, Calibra
     value = number->get<double>();
     return true;
   };
-  const auto nonzero = [](double v) { return v != 0.0; };
+  // Bounded so that the interleave's products (pitch * screenW / DPI, screenH / (screenW * slope)) stay finite.
+  const auto pitch = [](double v) { return v > 0.0 && v <= kMaxMagnitude; };
+  const auto slope = [](double v) { return std::abs(v) >= 1e-6 && std::abs(v) <= kMaxMagnitude; };
+  const auto bounded = [](double v) { return std::abs(v) <= kMaxMagnitude; };
+  const auto dpi = [](double v) { return v >= 1.0 && v <= kMaxMagnitude; };
   const auto side = [](double v) { return v >= 1.0 && v <= kMaxImageSide && v == std::floor(v); };
   const auto flag = [](double v) { return v == 0.0 || v == 1.0; };
   const auto cone = [](double v) { return v > 0.0 && v < 180.0; };
   double width = 0.0, height = 0.0, inverted = 0.0, flip_x = 0.0, flip_y = 0.0;
   Calibration c;
-  if (!field("pitch", true, 0.0, c.pitch, positive, "> 0") || !field("slope", true, 0.0, c.slope, nonzero, "other than 0") ||
-      !field("center", true, 0.0, c.center, any, "(any)") || !field("DPI", true, 0.0, c.dpi, positive, "> 0") ||
+  if (!field("pitch", true, 0.0, c.pitch, pitch, "in (0, 1e6]") ||
+      !field("slope", true, 0.0, c.slope, slope, "of magnitude 1e-6..1e6") ||
+      !field("center", true, 0.0, c.center, bounded, "of magnitude at most 1e6") ||
+      !field("DPI", true, 0.0, c.dpi, dpi, "in 1..1e6") ||
       !field("screenW", true, 0.0, width, side, "(an integer in 1..16384)") ||
       !field("screenH", true, 0.0, height, side, "(an integer in 1..16384)") ||
       !field("invView", false, 0.0, inverted, flag, "(0 or 1)") || !field("flipImageX", false, 0.0, flip_x, flag, "(0 or 1)") ||

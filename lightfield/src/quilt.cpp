@@ -27,6 +27,7 @@ double view_fraction(const Interleave& i, const Calibration& c, int x, int y, in
 
 int view_of_subpixel(const Interleave& i, const Calibration& c, int x, int y, int channel) {
   const double z = view_fraction(i, c, x, y, channel);
+  if (!(z >= 0.0 && z <= 1.0)) return 0;  // a phase too large for a double's fraction: no view is better
   return std::clamp(static_cast<int>(std::floor(z * i.views)), 0, i.views - 1);
 }
 

@@ -313,6 +313,8 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
             "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected z above modules.z (-1.200000): the box lies in front of the "
             "modules, got array");
   EXPECT_EQ(parse_error("type = \"modules\"\n[screen\n").substr(0, 24), "/tmp/lf-test/d.toml:2:8:");
+  EXPECT_EQ(parse_error(replaced("x_first = -1.0", "x_first = -1e300")),
+            "/tmp/lf-test/d.toml:9:11: modules.x_first: expected a number of magnitude at most 1e6, got -1e+300");
 }
 
 TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
@@ -338,7 +340,9 @@ TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
   EXPECT_FALSE(lightfield::parse_calibration("[1, 2]", "v.json", c, error));
   EXPECT_EQ(error, "v.json: expected a JSON object (the display's visual.json)");
   EXPECT_FALSE(lightfield::parse_calibration(R"({"pitch": 50})", "v.json", c, error));
-  EXPECT_EQ(error, "v.json: pitch: expected an object {\"value\": number > 0}, got number");
+  EXPECT_EQ(error, "v.json: pitch: expected an object {\"value\": number in (0, 1e6]}, got number");
+  EXPECT_FALSE(lightfield::parse_calibration(R"({"pitch": {"value": 50}, "slope": {"value": 1e-300}})", "v.json", c, error));
+  EXPECT_EQ(error, "v.json: slope: expected an object {\"value\": number of magnitude 1e-6..1e6}, got \"value\": 1e-300");
   std::filesystem::remove_all(dir);
 }
 

@@ -155,7 +155,7 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   for (int frame = 0; frame < frames; ++frame) {
     const bool last = frame + 1 == frames;
     const auto start = std::chrono::steady_clock::now();
-    render::LightFieldRenderer::AfterView after;
+    render::AfterView after;
     if (last && !options.dump_dir.empty() && !options.view_probe)
       after = [&](int k, const render::View& view, const render::ViewTargets&) {
         if (dump_error.empty()) dump_view(options.dump_dir, k, view, renderer, dump_error);

@@ -1,6 +1,5 @@
 #include "render/light_field.h"
 
-#include "gl/program.h"
 #include "gl_util.h"
 #include "render/readback.h"
 
@@ -14,30 +13,6 @@ float srgb_encode(float linear) {
   const float c = std::clamp(linear, 0.0f, 1.0f);
   return c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
-
-}  // namespace
-
-bool LightFieldRenderer::init(const gl::Caps& caps, std::string& error) {
-  caps_ = caps;
-  if (!programs_.build(caps, error)) return false;
-  interleave_ = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "interleave.frag"}}, "", error);
-  if (!interleave_) return false;
-  detail::assign_units(interleave_, {"u_quilt"});
-  interleave_constants_ = gl::uniform(interleave_, "u_constants");
-  interleave_panel_ = gl::uniform(interleave_, "u_panel");
-  interleave_layout_ = gl::uniform(interleave_, "u_layout");
-  gl::api.UseProgram(0);
-  return true;
-}
-
-bool LightFieldRenderer::upload(const scene::Scene& scene, std::string&) {
-  bounds_ = scene.bounds;
-  source_ = std::make_shared<const scene::Scene>(scene);
-  uploaded_ = false;
-  return true;
-}
-
-namespace {
 
 // Whether two displays place vertices alike (the subdivided scene of one fits the other).
 bool same_geometry(const lightfield::Display& a, const lightfield::Display& b) {
@@ -53,91 +28,68 @@ bool same_geometry(const lightfield::Display& a, const lightfield::Display& b) {
 
 }  // namespace
 
-bool LightFieldRenderer::configure(const lightfield::Display& display, const FrameSettings& settings,
-                                   const scene::Camera& camera, std::string& error) {
+scene::Scene prepare_for_display(const scene::Scene& scene, const lightfield::Display& display, SubdivisionReport& report) {
+  report = SubdivisionReport{};
+  if (display.type != lightfield::DisplayType::modules) return scene;
+  const lightfield::ModulesDisplay& m = display.modules;
+  const auto roi = lightfield::roi_transform(lightfield::world_roi(m, {scene.bounds.min, scene.bounds.max}), m.physical_roi);
+  if (!roi) return scene;
+  return subdivide_for_modules(scene, m, *roi, LightFieldRenderer::kMaxEdgeErrorPx, report);
+}
+
+bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const lightfield::Display& display,
+                                 const FrameSettings& frame_settings, const scene::Bounds& bounds, double scene_radius,
+                                 ViewTargets& targets, std::string& error) {
   display_ = display;
-  settings_ = settings;
+  FrameSettings settings = frame_settings;
   const bool modules = display.type == lightfield::DisplayType::modules;
-  if (modules) {
-    settings_.width = display.modules.width;
-    settings_.height = display.modules.height;
-  } else {
-    settings_.width = display.quilt.view_width;
-    settings_.height = display.quilt.view_height;
-  }
+  settings.width = modules ? display.modules.width : display.quilt.view_width;
+  settings.height = modules ? display.modules.height : display.quilt.view_height;
   // Views share one set of targets, so the prepass's automatic choice (measured per view over frames)
   // has nothing to measure: it stays off unless asked for.
-  if (settings_.prepass == Prepass::automatic) settings_.prepass = Prepass::off;
-  if (source_ == nullptr) {
-    error = "no scene uploaded";
-    return false;
-  }
-  if (!uploaded_ || !same_geometry(display, uploaded_for_)) {
-    subdivision_ = SubdivisionReport{};
-    const scene::Scene* to_upload = source_.get();
-    scene::Scene subdivided;
-    if (modules) {
-      const lightfield::ModulesDisplay& m = display.modules;
-      const auto roi = lightfield::roi_transform(lightfield::world_roi(m, {bounds_.min, bounds_.max}), m.physical_roi);
-      if (roi) {
-        subdivided = subdivide_for_modules(*source_, m, *roi, kMaxEdgeErrorPx, subdivision_);
-        to_upload = &subdivided;
-      }
-    }
-    if (!scene_.upload(*to_upload, caps_, error)) return false;
-    uploaded_ = true;
-    uploaded_for_ = display;
-  }
-  if (!targets_.configure(programs_, caps_, settings_, scene_.radius(), false, error, modules)) return false;
+  if (settings.prepass == Prepass::automatic) settings.prepass = Prepass::off;
+  if (!targets.configure(programs, caps, settings, scene_radius, false, error, modules)) return false;
+  if (!modules && !programs.build_interleave(error)) return false;
+  background_ = settings.background;
+  view_size_ = {settings.width, settings.height};
 
   const int count = display.views();
-  views_.clear();
-  views_.reserve(static_cast<size_t>(count));
+  views_.assign(static_cast<size_t>(count), View{});
   skipped_.assign(static_cast<size_t>(count), false);
   if (modules) {
     const lightfield::ModulesDisplay& m = display.modules;
-    const lightfield::Box world = lightfield::world_roi(m, {bounds_.min, bounds_.max});
-    const std::optional<lightfield::RoiTransform> roi = lightfield::roi_transform(world, m.physical_roi);
+    const std::optional<lightfield::RoiTransform> roi =
+        lightfield::roi_transform(lightfield::world_roi(m, {bounds.min, bounds.max}), m.physical_roi);
     if (!roi) {
       error = "display: roi: the world box and the physical box need a positive size along every axis";
       return false;
     }
-    const lightfield::Box scene_box{roi->to_physical(bounds_.min), roi->to_physical(bounds_.max)};
+    const lightfield::Box scene_box{roi->to_physical(bounds.min), roi->to_physical(bounds.max)};
     // One turn per world cell the size of a module pixel on the screen: neighbouring pixels still
     // differ (the blur averages them), and a point keeps its turn from module to module.
     const double seed_cell = (m.footprint.y - m.footprint.x) / m.width / roi->scale;
     for (int k = 0; k < count; ++k) {
       const lightfield::Module module = lightfield::module_of(m, k);
-      views_.push_back(module_view(module, *roi, seed_cell));
+      views_[static_cast<size_t>(k)] = module_view(module, *roi, seed_cell);
       skipped_[static_cast<size_t>(k)] = !lightfield::sees(module, scene_box);
     }
     grid_ = lightfield::montage_grid(count);
   } else {
-    const double aspect = static_cast<double>(settings_.width) / settings_.height;
-    for (int k = 0; k < count; ++k) {
-      // The outer views stand up to 1 / cos(cone / 2) farther from the scene than the centre one.
-      const lightfield::OffAxisView v = lightfield::quilt_view(camera.eye, camera.target, camera.up, camera.fov_y, aspect,
-                                                               camera.near * 0.8, camera.far * 1.25,
-                                                               display.quilt.calibration.view_cone_deg, k, count);
-      View view;
-      view.view = v.view;
-      view.projection = v.projection;
-      view.near = camera.near * 0.8;
-      view.far = camera.far * 1.25;
-      view.eye = v.eye;
-      views_.push_back(view);
-    }
     grid_ = {display.quilt.columns, display.quilt.rows};
   }
-  output_size_ = grid_ * glm::ivec2(settings_.width, settings_.height);
-  if (output_size_.x > caps_.max_texture_size || output_size_.y > caps_.max_texture_size) {
+  output_size_ = grid_ * view_size_;
+  if (output_size_.x > caps.max_texture_size || output_size_.y > caps.max_texture_size) {
     error = "display: the " + std::string(modules ? "montage" : "quilt") + " of " + std::to_string(count) + " views is " +
             std::to_string(output_size_.x) + "x" + std::to_string(output_size_.y) + ", beyond this GPU's " +
-            std::to_string(caps_.max_texture_size) + " pixels per side";
+            std::to_string(caps.max_texture_size) + " pixels per side";
     return false;
   }
   const auto make_output = [](gl::Texture& texture, gl::Framebuffer& fbo, glm::ivec2 size) {
     texture = detail::make_target(GL_RGBA8, size.x, size.y);
+    gl::api.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // present() scales it
+    gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl::api.BindTexture(GL_TEXTURE_2D, 0);
     fbo = gl::make_framebuffer();
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.id(), 0);
@@ -152,51 +104,69 @@ bool LightFieldRenderer::configure(const lightfield::Display& display, const Fra
   native_texture_.reset();
   native_fbo_.reset();
   if (!modules) {
-    const glm::ivec2 panel(display.quilt.calibration.screen_width, display.quilt.calibration.screen_height);
-    if (panel.x > caps_.max_texture_size || panel.y > caps_.max_texture_size) {
+    const glm::ivec2 panel = native_size();
+    if (panel.x > caps.max_texture_size || panel.y > caps.max_texture_size) {
       error = display.calibration_path + ": the panel (" + std::to_string(panel.x) + "x" + std::to_string(panel.y) +
-              ") is beyond this GPU's " + std::to_string(caps_.max_texture_size) + " pixels per side";
+              ") is beyond this GPU's " + std::to_string(caps.max_texture_size) + " pixels per side";
       return false;
     }
     if (!make_output(native_texture_, native_fbo_, panel)) {
       error = "the native panel framebuffer is incomplete";
       return false;
     }
+    interleave_ = &programs.interleave;
+    interleave_constants_ = programs.interleave_constants;
+    interleave_panel_ = programs.interleave_panel;
+    interleave_layout_ = programs.interleave_layout;
   }
   const GLenum status = gl::api.GetError();
   if (status != GL_NO_ERROR) {
     error = "allocating the light field outputs raised GL error 0x" + std::to_string(status);
     return false;
   }
-  gl_error_.clear();
   return true;
 }
 
-glm::ivec2 LightFieldRenderer::tile_origin(int k) const {
-  const glm::ivec2 size(settings_.width, settings_.height);
-  if (quilt()) return lightfield::tile_of(display_.quilt, k) * size;
-  // The montage reads like a page: module 0 at the top left.
-  return glm::ivec2(k % grid_.x, grid_.y - 1 - k / grid_.x) * size;
+void LightFieldOutput::set_camera(const scene::Camera& camera) {
+  if (display_.type != lightfield::DisplayType::quilt) return;
+  const double aspect = static_cast<double>(view_size_.x) / view_size_.y;
+  // The outer views stand up to 1 / cos(cone / 2) farther from the scene than the centre one.
+  const double near = camera.near * 0.8, far = camera.far * 1.25;
+  for (int k = 0; k < views(); ++k) {
+    const lightfield::OffAxisView v = lightfield::quilt_view(camera.eye, camera.target, camera.up, camera.fov_y, aspect, near, far,
+                                                             display_.quilt.calibration.view_cone_deg, k, views());
+    View& view = views_[static_cast<size_t>(k)];
+    view.view = v.view;
+    view.projection = v.projection;
+    view.near = near;
+    view.far = far;
+    view.eye = v.eye;
+  }
 }
 
-glm::ivec2 LightFieldRenderer::native_size() const {
-  return quilt() ? glm::ivec2(display_.quilt.calibration.screen_width, display_.quilt.calibration.screen_height) : glm::ivec2(0);
-}
-
-void LightFieldRenderer::set_pixel_turns(bool pixel_turns) {
+void LightFieldOutput::set_pixel_turns(bool pixel_turns) {
   for (View& view : views_)
     if (view.module) view.module->pixel_turns = pixel_turns;
 }
 
-int LightFieldRenderer::rendered_views() const {
-  return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false));
+glm::ivec2 LightFieldOutput::tile_origin(int k) const {
+  if (quilt()) return lightfield::tile_of(display_.quilt, k) * view_size_;
+  // The montage reads like a page: module 0 at the top left.
+  return glm::ivec2(k % grid_.x, grid_.y - 1 - k / grid_.x) * view_size_;
 }
 
-void LightFieldRenderer::render(bool probe, const AfterView& after_view) {
+glm::ivec2 LightFieldOutput::native_size() const {
+  return quilt() ? glm::ivec2(display_.quilt.calibration.screen_width, display_.quilt.calibration.screen_height) : glm::ivec2(0);
+}
+
+int LightFieldOutput::rendered_views() const { return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false)); }
+
+void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTargets& targets, float fade, bool probe,
+                              const AfterView& after_view, std::string* gl_error) {
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, output_fbo_.id());
   gl::api.Viewport(0, 0, output_size_.x, output_size_.y);
-  const glm::vec3 background = settings_.background;
-  const float clear[4] = {srgb_encode(background.r), srgb_encode(background.g), srgb_encode(background.b), 1.0f};
+  const float clear[4] = {srgb_encode(background_.r * fade), srgb_encode(background_.g * fade), srgb_encode(background_.b * fade),
+                          1.0f};
   gl::api.ClearBufferfv(GL_COLOR, 0, clear);
   for (int k = 0; k < views(); ++k) {
     if (skipped_[static_cast<size_t>(k)]) continue;
@@ -204,16 +174,16 @@ void LightFieldRenderer::render(bool probe, const AfterView& after_view) {
     if (probe) {
       gl::api.BindFramebuffer(GL_FRAMEBUFFER, output_fbo_.id());
       gl::api.Enable(GL_SCISSOR_TEST);
-      gl::api.Scissor(origin.x, origin.y, settings_.width, settings_.height);
+      gl::api.Scissor(origin.x, origin.y, view_size_.x, view_size_.y);
       const float level = static_cast<float>(k) / 255.0f;
       const float flat[4] = {level, level, level, 1.0f};
       gl::api.ClearBufferfv(GL_COLOR, 0, flat);
       gl::api.Disable(GL_SCISSOR_TEST);
       continue;
     }
-    const Frame frame{programs_, scene_, targets_, views_[static_cast<size_t>(k)], nullptr, &gl_error_};
-    render_view(frame, PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, 1.0f);
-    if (after_view) after_view(k, views_[static_cast<size_t>(k)], targets_);
+    const Frame frame{programs, scene, targets, views_[static_cast<size_t>(k)], nullptr, gl_error};
+    render_view(frame, PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, fade);
+    if (after_view) after_view(k, views_[static_cast<size_t>(k)], targets);
   }
   if (quilt()) {
     const lightfield::Calibration& c = display_.quilt.calibration;
@@ -221,31 +191,81 @@ void LightFieldRenderer::render(bool probe, const AfterView& after_view) {
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, native_fbo_.id());
     gl::api.Viewport(0, 0, c.screen_width, c.screen_height);
     gl::api.Disable(GL_DEPTH_TEST);
-    gl::api.UseProgram(interleave_.id());
+    gl::api.UseProgram(interleave_->id());
     gl::api.Uniform4f(interleave_constants_, static_cast<float>(interleave.pitch), static_cast<float>(interleave.tilt),
                       static_cast<float>(interleave.subpixel), static_cast<float>(interleave.center));
     gl::api.Uniform4i(interleave_panel_, c.screen_width, c.screen_height, c.inverted_views ? 1 : 0, c.flip_y ? 1 : 0);
-    gl::api.Uniform4i(interleave_layout_, grid_.x, grid_.y, settings_.width, settings_.height);
+    gl::api.Uniform4i(interleave_layout_, grid_.x, grid_.y, view_size_.x, view_size_.y);
     detail::bind_texture(0, output_texture_);
-    gl::api.BindVertexArray(programs_.empty_vertex_array.id());
+    gl::api.BindVertexArray(programs.empty_vertex_array.id());
     gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
     gl::api.BindVertexArray(0);
   }
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-std::vector<uint8_t> LightFieldRenderer::read_output() const {
+void LightFieldOutput::present(const PresentTarget& target, int width, int height) const {
+  const glm::ivec2 source = quilt() ? native_size() : output_size_;
+  // Fit inside, keeping the aspect; the rest is black. A quilt's panel image is meant pixel for pixel,
+  // and is, when the surface is the panel.
+  const double scale = std::min(static_cast<double>(width) / source.x, static_cast<double>(height) / source.y);
+  const int w = std::max(1, static_cast<int>(source.x * scale)), h = std::max(1, static_cast<int>(source.y * scale));
+  const int x = target.x + (width - w) / 2, y = target.y + (height - h) / 2;
+  gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
+  gl::api.Viewport(target.x, target.y, width, height);
+  const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  gl::api.ClearBufferfv(GL_COLOR, 0, black);
+  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, quilt() ? native_fbo_.id() : output_fbo_.id());
+  gl::api.BlitFramebuffer(0, 0, source.x, source.y, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, w == source.x ? GL_NEAREST : GL_LINEAR);
+  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+}
+
+std::vector<uint8_t> LightFieldOutput::read_output() const {
   return read_presented(PresentTarget{output_fbo_.id(), 0, 0, false}, output_size_.x, output_size_.y);
 }
 
-std::vector<uint8_t> LightFieldRenderer::read_view(int k) const {
+std::vector<uint8_t> LightFieldOutput::read_view(int k) const {
   const glm::ivec2 origin = tile_origin(k);
-  return read_presented(PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, settings_.width, settings_.height);
+  return read_presented(PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, view_size_.x, view_size_.y);
 }
 
-std::vector<uint8_t> LightFieldRenderer::read_native() const {
+std::vector<uint8_t> LightFieldOutput::read_native() const {
   const glm::ivec2 size = native_size();
   return read_presented(PresentTarget{native_fbo_.id(), 0, 0, false}, size.x, size.y);
+}
+
+bool LightFieldRenderer::init(const gl::Caps& caps, std::string& error) {
+  caps_ = caps;
+  return programs_.build(caps, error);
+}
+
+bool LightFieldRenderer::upload(const scene::Scene& scene, std::string&) {
+  source_ = std::make_shared<const scene::Scene>(scene);
+  uploaded_ = false;
+  return true;
+}
+
+bool LightFieldRenderer::configure(const lightfield::Display& display, const FrameSettings& settings, const scene::Camera& camera,
+                                   std::string& error) {
+  if (source_ == nullptr) {
+    error = "no scene uploaded";
+    return false;
+  }
+  if (!uploaded_ || !same_geometry(display, uploaded_for_)) {
+    const scene::Scene prepared = prepare_for_display(*source_, display, subdivision_);
+    if (!scene_.upload(prepared, caps_, error)) return false;
+    uploaded_ = true;
+    uploaded_for_ = display;
+  }
+  gl_error_.clear();
+  if (!output_.configure(programs_, caps_, display, settings, source_->bounds, scene_.radius(), targets_, error)) return false;
+  output_.set_camera(camera);
+  return true;
+}
+
+void LightFieldRenderer::render(bool probe, const AfterView& after_view) {
+  output_.render(programs_, scene_, targets_, 1.0f, probe, after_view, &gl_error_);
 }
 
 }  // namespace render

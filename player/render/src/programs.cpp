@@ -91,6 +91,18 @@ const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision pre
   return &program;
 }
 
+bool Programs::build_interleave(std::string& error) {
+  if (interleave) return true;
+  interleave = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "interleave.frag"}}, "", error);
+  if (!interleave) return false;
+  detail::assign_units(interleave, {"u_quilt"});
+  interleave_constants = gl::uniform(interleave, "u_constants");
+  interleave_panel = gl::uniform(interleave, "u_panel");
+  interleave_layout = gl::uniform(interleave, "u_layout");
+  gl::api.UseProgram(0);
+  return true;
+}
+
 bool Programs::build_module_programs(std::string& error) {
   if (module_gbuffer_plain.program) return true;
   const std::string modules = "#define LIGHTFIELD_MODULES 1\n";

@@ -36,6 +36,10 @@ class Programs {
   // The G-buffer and prepass programs of light field modules (world-to-image per vertex, positions
   // texture), compiled on first call.
   bool build_module_programs(std::string& error);
+  // The lenticular interleave of quilt displays (interleave.frag), compiled on first call.
+  bool build_interleave(std::string& error);
+  gl::Program interleave;
+  GLint interleave_constants = -1, interleave_panel = -1, interleave_layout = -1;
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs

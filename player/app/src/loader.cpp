@@ -1,5 +1,6 @@
 #include "loader.h"
 
+#include "render/light_field.h"
 #include "scene/load.h"
 
 #include <sys/eventfd.h>
@@ -22,10 +23,10 @@ Loader::~Loader() {
   thread_.join();
 }
 
-void Loader::load_scene(const std::string& spec) {
+void Loader::load_scene(const std::string& key) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::scene, spec, nullptr, nullptr, {}, {}});
+    jobs_.push_back({Result::Kind::scene, key, nullptr, nullptr, nullptr, {}, {}});
   }
   work_.notify_one();
 }
@@ -33,7 +34,7 @@ void Loader::load_scene(const std::string& spec) {
 void Loader::load_playlist(const std::string& path) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, {}, {}});
+    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, nullptr, {}, {}});
   }
   work_.notify_one();
 }
@@ -71,7 +72,21 @@ void Loader::run() {
     if (job.kind == Result::Kind::scene) {
       auto scene = std::make_shared<scene::Scene>();
       std::ostringstream log;  // warnings are not errors: the item plays, and the status says them
-      if (scene::load(job.path, *scene, job.error, log)) job.scene = std::move(scene);
+      const std::string display_path = display_of(job.path);
+      auto display = std::make_shared<lightfield::Display>();
+      if (!display_path.empty() && !lightfield::load_display(display_path, *display, job.error)) {
+        // the error names the display file and the field
+      } else if (scene::load(scene_of(job.path), *scene, job.error, log)) {
+        if (!display_path.empty()) {
+          render::SubdivisionReport report;
+          scene = std::make_shared<scene::Scene>(render::prepare_for_display(*scene, *display, report));
+          if (report.capped)
+            log << "warning: " << scene_of(job.path) << ": on " << display_path << " some long edges stay bent by up to "
+                << report.worst_after_px << " px (the triangle budget ran out splitting them)\n";
+          job.display = std::move(display);
+        }
+        job.scene = std::move(scene);
+      }
       std::istringstream lines(log.str());
       constexpr std::string_view kPrefix = "warning: ";
       for (std::string line; std::getline(lines, line);)

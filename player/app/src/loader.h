@@ -1,6 +1,7 @@
 #pragma once
 // Reads scenes and playlists on a thread of its own, so parsing, validating and decoding images
 // never holds up a frame. Results come back through a queue; fd() (an eventfd) wakes the loop.
+#include "lightfield/display_file.h"
 #include "playback/playlist.h"
 #include "scene/scene.h"
 #include "hal/unique_fd.h"
@@ -16,12 +17,22 @@
 
 namespace app {
 
+// The loader's key for a playlist item: its scene, and its display when it has one.
+inline std::string load_key(const playback::Item& item) { return item.display.empty() ? item.scene : item.scene + "\n" + item.display; }
+// The scene spec and the display path of a key.
+inline std::string scene_of(const std::string& key) { return key.substr(0, key.find('\n')); }
+inline std::string display_of(const std::string& key) {
+  const size_t at = key.find('\n');
+  return at == std::string::npos ? std::string() : key.substr(at + 1);
+}
+
 class Loader {
  public:
   struct Result {
     enum class Kind : std::uint8_t { scene, playlist } kind = Kind::scene;
-    std::string path;  // the scene spec or the playlist file, as requested
+    std::string path;  // the scene key (see load_scene) or the playlist file, as requested
     std::shared_ptr<const scene::Scene> scene;
+    std::shared_ptr<const lightfield::Display> display;  // when the key names one
     std::shared_ptr<const playback::Playlist> playlist;
     std::string error;  // empty on success
     std::vector<std::string> warnings;  // "spec: what" for what loaded anyway (a texture drawn white)
@@ -33,7 +44,9 @@ class Loader {
   Loader& operator=(const Loader&) = delete;
 
   int fd() const { return wake_.get(); }
-  void load_scene(const std::string& spec);
+  // `key`: a scene spec, or "SPEC\nDISPLAY" for a scene shown on a light field display: the display
+  // file is read too, and for optical modules the scene's long edges are split for it.
+  void load_scene(const std::string& key);
   void load_playlist(const std::string& path);
   // Non-blocking: the oldest finished job, if any.
   bool take(Result& out);

@@ -10,6 +10,7 @@
 #include "hal/self_check.h"
 #include "image_io.h"
 #include "loader.h"
+#include "render/light_field.h"
 #include "overlay.h"
 #include "playback/timeline.h"
 #include "render/renderer.h"
@@ -81,6 +82,8 @@ struct Loaded {
   // A new version uploading in slices; it replaces `gpu` once whole, so a reload never shows half a scene.
   std::unique_ptr<render::SceneGpu> incoming;
   scene::Bounds incoming_bounds;
+  // The light field display the item is shown on (null: the platform's own 2D surface).
+  std::shared_ptr<const lightfield::Display> display, incoming_display;
   std::string error;  // failed to load: the item is skipped
   std::vector<std::string> warnings;  // loaded anyway (a texture drawn white): in the status while it plays
   bool requested = false;
@@ -237,6 +240,10 @@ class Player {
 
   render::View view_;
   scene::Bounds shown_bounds_;
+  // Items on a light field display: its views and outputs, and the targets they share.
+  render::LightFieldOutput light_field_;
+  render::ViewTargets light_field_targets_;
+  bool shown_display_ = false;
   std::string gl_error_, last_status_error_;
   int last_item_ = -1;
   double last_error_s_ = -1e9;
@@ -322,14 +329,16 @@ bool Player::set_up_watch() {
   return static_cast<bool>(signal_fd_);
 }
 
-// Folders of the playlist and of every item's scene: a writer saves a dot-file and renames it into
+// Folders of the playlist and of every item's scene and display: a writer saves a dot-file and renames it into
 // place (MOVED_TO), or writes in place (CLOSE_WRITE); a removed file (DELETE) fails its next load.
 void Player::watch_content() {
   if (!inotify_fd_) return;
   std::set<std::string> folders;
   if (!playlist_path_.empty()) folders.insert(fs::path(playlist_path_).parent_path().string());
-  for (const playback::Item& item : playlist_->items)
+  for (const playback::Item& item : playlist_->items) {
     if (item.scene.rfind("builtin:", 0) != 0) folders.insert(fs::path(item.scene).parent_path().string());
+    if (!item.display.empty()) folders.insert(fs::path(item.display).parent_path().string());
+  }
   for (const std::string& folder : folders) {
     bool known = false;
     for (const auto& [wd, dir] : watched_dirs_) known = known || dir == folder;
@@ -364,11 +373,11 @@ void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, 
   // Scenes no item names any more are dropped with their GPU data.
   for (auto it = scenes_.begin(); it != scenes_.end();) {
     bool used = false;
-    for (const playback::Item& item : playlist_->items) used = used || item.scene == it->first;
+    for (const playback::Item& item : playlist_->items) used = used || load_key(item) == it->first;
     it = used ? std::next(it) : scenes_.erase(it);
   }
   for (size_t i = 0; i < playlist_->items.size(); ++i) {
-    auto found = scenes_.find(playlist_->items[i].scene);
+    auto found = scenes_.find(load_key(playlist_->items[i]));
     if (found != scenes_.end() && !found->second.error.empty()) timeline_->set_playable(static_cast<int>(i), false);
   }
   watch_content();
@@ -377,7 +386,7 @@ void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, 
 void Player::request_scenes(const playback::Frame& frame) {
   for (int item : {frame.item, frame.next_item}) {
     if (item < 0) continue;
-    const std::string& spec = playlist_->items[static_cast<size_t>(item)].scene;
+    const std::string spec = load_key(playlist_->items[static_cast<size_t>(item)]);
     Loaded& loaded = scenes_[spec];
     if (!loaded.requested) {
       loaded.requested = true;
@@ -406,7 +415,7 @@ void Player::handle_loader() {
       if (!loaded.gpu) {  // never loaded: skip its items; a reload that fails keeps the old content
         loaded.error = result.error;
         for (size_t i = 0; i < playlist_->items.size(); ++i)
-          if (playlist_->items[i].scene == result.path) timeline_->set_playable(static_cast<int>(i), false);
+          if (load_key(playlist_->items[i]) == result.path) timeline_->set_playable(static_cast<int>(i), false);
       }
       continue;
     }
@@ -414,7 +423,8 @@ void Player::handle_loader() {
     loaded.warnings = std::move(result.warnings);
     for (const std::string& warning : loaded.warnings) err_ << "warning: " << warning << "\n";
     for (size_t i = 0; i < playlist_->items.size(); ++i)
-      if (playlist_->items[i].scene == result.path) timeline_->set_playable(static_cast<int>(i), true);
+      if (load_key(playlist_->items[i]) == result.path) timeline_->set_playable(static_cast<int>(i), true);
+    loaded.incoming_display = result.display;
     loaded.incoming = std::make_unique<render::SceneGpu>();
     loaded.incoming->begin(result.scene, caps_);
     loaded.incoming_bounds = result.scene->bounds;
@@ -439,6 +449,7 @@ void Player::step_uploads() {
     if (loaded.gpu) ++swaps_;
     loaded.gpu = std::move(loaded.incoming);
     loaded.bounds = loaded.incoming_bounds;
+    loaded.display = loaded.incoming_display;
     if (spec == shown_spec_) configured_item_ = -2;  // the radius may have changed: configure again
   }
 }
@@ -476,8 +487,9 @@ void Player::handle_inotify() {
         else loader_->load_playlist(path);
         continue;
       }
-      auto found = scenes_.find(path);
-      if (found != scenes_.end()) loader_->load_scene(path);  // a deleted scene fails to load and is reported
+      // A deleted scene or display fails to load and is reported; the last good version keeps playing.
+      for (const auto& [key, loaded] : scenes_)
+        if (scene_of(key) == path || display_of(key) == path) loader_->load_scene(key);
     }
   }
 }
@@ -644,14 +656,24 @@ void Player::render_frame(const playback::Frame& frame) {
   if (frame.item < 0) {
     state = State::error;
   } else {
-    const std::string& spec = playlist_->items[static_cast<size_t>(frame.item)].scene;
+    const std::string spec = load_key(playlist_->items[static_cast<size_t>(frame.item)]);
     auto found = scenes_.find(spec);
     if (found != scenes_.end() && found->second.gpu && found->second.gpu->ready()) {
       gpu = found->second.gpu.get();
+      const lightfield::Display* display = found->second.display.get();
       const bool new_item = frame.item != configured_item_ || frame.sequence != configured_sequence_ || spec != shown_spec_;
       if (new_item || frame.cut) {
         std::string error;
-        if (!targets_.configure(programs_, caps_, settings_for(frame.item), gpu->radius(), present_.srgb, error)) {
+        render::FrameSettings settings = settings_for(frame.item);
+        if (display != nullptr && display->type == lightfield::DisplayType::modules &&
+            settings.ao_settings.estimator == ssao::Estimator::horizon) {
+          // Horizon searches screen-space slices; Algorithm 2 for modules runs the hemisphere estimator.
+          settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+        }
+        const bool configured = display != nullptr ? light_field_.configure(programs_, caps_, *display, settings, found->second.bounds,
+                                                                            gpu->radius(), light_field_targets_, error)
+                                                   : targets_.configure(programs_, caps_, settings, gpu->radius(), present_.srgb, error);
+        if (!configured) {
           report(spec + ": " + error);
           gpu = nullptr;
         }
@@ -659,10 +681,16 @@ void Player::render_frame(const playback::Frame& frame) {
         configured_sequence_ = frame.sequence;
         shown_spec_ = spec;
       }
+      shown_display_ = gpu != nullptr && display != nullptr;
       if (gpu != nullptr) {
         shown_bounds_ = found->second.bounds;
-        view_ = render::view_of(
-            scene::frame(shown_bounds_, framing_of(frame.camera), targets_.settings().width, targets_.settings().height));
+        if (shown_display_) {
+          const glm::ivec2 size = light_field_.view_size();
+          light_field_.set_camera(scene::frame(shown_bounds_, framing_of(frame.camera), size.x, size.y));
+        } else {
+          view_ = render::view_of(
+              scene::frame(shown_bounds_, framing_of(frame.camera), targets_.settings().width, targets_.settings().height));
+        }
       }
     } else {
       state = State::loading;
@@ -677,6 +705,11 @@ void Player::render_frame(const playback::Frame& frame) {
   timer_.begin_frame();
   if (checking_) {
     draw_check_frame();
+  } else if (gpu != nullptr && shown_display_) {
+    // Every module or view, then what the display is fed (a quilt's panel image, the modules'
+    // montage) scaled onto the surface. Per-pass times are per view here: the frame is not timed by pass.
+    light_field_.render(programs_, *gpu, light_field_targets_, frame.fade, false, {}, &gl_error_);
+    light_field_.present(present_, platform_->size().width, platform_->size().height);
   } else if (gpu != nullptr) {
     const render::Frame pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
     render::render_view(pass, present_, frame.fade);
@@ -690,7 +723,7 @@ void Player::render_frame(const playback::Frame& frame) {
   timer_.end_frame();
   // Pass times arrive a frame or two late; the automatic prepass choice is made from them.
   gl::FrameTimer::Times times;
-  if (timer_.poll(times) && gpu != nullptr && !checking_)
+  if (timer_.poll(times) && gpu != nullptr && !checking_ && !shown_display_)
     render::note_raster_time(targets_, render::to_pass_times(times, timer_.gpu_timed()));
   if (!gl_error_.empty()) {
     report("GL: " + gl_error_);
@@ -699,7 +732,7 @@ void Player::render_frame(const playback::Frame& frame) {
 }
 
 bool Player::scene_settled(int item) const {
-  const auto found = scenes_.find(playlist_->items[static_cast<size_t>(item)].scene);
+  const auto found = scenes_.find(load_key(playlist_->items[static_cast<size_t>(item)]));
   if (found == scenes_.end()) return false;
   const Loaded& loaded = found->second;
   return !loaded.error.empty() || (loaded.gpu && loaded.gpu->ready() && !loaded.incoming);

@@ -1,5 +1,6 @@
 // The present pass writes into the platform's framebuffer, frame after frame, with nothing read
 // back in between: no frame may depend on what the GPU was still doing for the one before.
+#include "app/render_command.h"
 #include "harness.h"
 
 namespace {
@@ -131,3 +132,13 @@ TEST_P(Present, FadeDarkensTheWholeImage) {
 INSTANTIATE_TEST_SUITE_P(Platforms, Present, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace
+
+// Scenes load knowing the context's largest texture: one this GPU cannot hold is drawn white with a
+// warning rather than failing the item at upload (play's loader and render take it from here).
+TEST(LoadOptions, FollowTheContextsLargestTexture) {
+  gl::Caps caps;
+  caps.max_texture_size = 2048;
+  EXPECT_EQ(app::load_options_for(caps).max_texture_size, 2048);
+  caps.max_texture_size = 65536;  // beyond the loader's own limit, which stays
+  EXPECT_EQ(app::load_options_for(caps).max_texture_size, scene::LoadOptions{}.max_texture_size);
+}

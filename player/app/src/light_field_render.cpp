@@ -127,11 +127,6 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
     out << "estimator: hemisphere (the default, horizon, has no form for optical modules; Algorithm 2 runs hemisphere)\n";
   }
 
-  scene::Scene scene;
-  if (!scene::load(options.scene, scene, error, err)) {
-    err << "error: " << error << "\n";
-    return 1;
-  }
   platform::Options platform_options;
   platform_options.name = options.platform;
   platform_options.size = {64, 64};  // every view renders into its own framebuffer
@@ -142,6 +137,11 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   }
   const gl::Caps caps = gl::query_caps();
   gl::install_debug_log(caps, false);
+  scene::Scene scene;
+  if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
   render::LightFieldRenderer renderer;
   const scene::Camera camera = scene::frame(scene.bounds, options.framing, display.quilt.view_width, display.quilt.view_height);
   if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, camera, error)) {

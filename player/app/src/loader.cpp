@@ -23,6 +23,11 @@ Loader::~Loader() {
   thread_.join();
 }
 
+void Loader::set_scene_options(const scene::LoadOptions& options) {
+  std::lock_guard lock(mutex_);
+  scene_options_ = options;
+}
+
 void Loader::load_scene(const std::string& key) {
   {
     std::lock_guard lock(mutex_);
@@ -61,10 +66,12 @@ std::size_t Loader::busy() const {
 void Loader::run() {
   for (;;) {
     Result job;
+    scene::LoadOptions scene_options;
     {
       std::unique_lock lock(mutex_);
       work_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
       if (stop_) return;
+      scene_options = scene_options_;
       job = std::move(jobs_.front());
       jobs_.pop_front();
       ++running_;
@@ -76,7 +83,7 @@ void Loader::run() {
       auto display = std::make_shared<lightfield::Display>();
       if (!display_path.empty() && !lightfield::load_display(display_path, *display, job.error)) {
         // the error names the display file and the field
-      } else if (scene::load(scene_of(job.path), *scene, job.error, log)) {
+      } else if (scene::load(scene_of(job.path), *scene, job.error, log, scene_options)) {
         if (!display_path.empty()) {
           render::SubdivisionReport report;
           scene = std::make_shared<scene::Scene>(render::prepare_for_display(*scene, *display, report));

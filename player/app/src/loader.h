@@ -3,6 +3,7 @@
 // never holds up a frame. Results come back through a queue; fd() (an eventfd) wakes the loop.
 #include "lightfield/display_file.h"
 #include "playback/playlist.h"
+#include "scene/gltf_loader.h"
 #include "scene/scene.h"
 #include "hal/unique_fd.h"
 
@@ -44,6 +45,8 @@ class Loader {
   Loader& operator=(const Loader&) = delete;
 
   int fd() const { return wake_.get(); }
+  // What scenes are loaded with from now on (the GL context's largest texture, once it exists).
+  void set_scene_options(const scene::LoadOptions& options);
   // `key`: a scene spec, or "SPEC\nDISPLAY" for a scene shown on a light field display: the display
   // file is read too, and for optical modules the scene's long edges are split for it.
   void load_scene(const std::string& key);
@@ -57,6 +60,7 @@ class Loader {
   void run();
 
   playback::ParseOptions playlist_options_;
+  scene::LoadOptions scene_options_;  // guarded by mutex_
   hal::UniqueFd wake_;
   mutable std::mutex mutex_;
   std::condition_variable work_;

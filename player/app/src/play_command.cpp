@@ -829,6 +829,8 @@ int Player::run() {
   }
   caps_ = gl::query_caps();
   gl::install_debug_log(caps_, false);
+  // Textures beyond what this GPU can hold are drawn white with a warning, not failed at upload.
+  loader_->set_scene_options(load_options_for(caps_));
   present_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
   // Every SSAO variant now, so a playlist item with another estimator or precision does not compile mid-play.
   if (!programs_.build(caps_, error)) {

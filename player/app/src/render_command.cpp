@@ -122,6 +122,12 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
 }  // namespace
 
+scene::LoadOptions load_options_for(const gl::Caps& caps) {
+  scene::LoadOptions options;
+  options.max_texture_size = std::min(options.max_texture_size, caps.max_texture_size);
+  return options;
+}
+
 scene::Framing framing_of(const playback::Camera& camera) {
   scene::Framing framing;
   framing.azimuth_deg = camera.azimuth_deg;
@@ -138,15 +144,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
         << ": needs --display FILE (a light field display)\n";
     return 2;
   }
-  const auto load_start = std::chrono::steady_clock::now();
-  scene::Scene scene;
   std::string error;
-  if (!scene::load(options.scene, scene, error, err)) {
-    err << "error: " << error << "\n";
-    return 1;
-  }
-  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
-
   platform::Options platform_options;
   platform_options.name = options.platform;
   platform_options.size = {options.frame.width, options.frame.height};
@@ -157,6 +155,15 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   }
   const gl::Caps caps = gl::query_caps();
   gl::install_debug_log(caps, false);
+
+  // Loaded with the context's texture limit known, so a texture this GPU cannot hold is drawn white.
+  const auto load_start = std::chrono::steady_clock::now();
+  scene::Scene scene;
+  if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {
+    err << "error: " << error << "\n";
+    return 1;
+  }
+  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
   render::Renderer renderer;
   const render::PresentTarget target{platform->framebuffer(), 0, 0, platform->srgb_framebuffer()};
   if (!renderer.init(caps, target, error) || !renderer.upload(scene, error) || !renderer.configure(options.frame, error)) {

@@ -1,7 +1,9 @@
 #pragma once
 // The player's sub-commands over the render pipeline: `render` (one scene to an image, per-pass
 // times, optional dump for independent evaluation) and `info` (platform and GL capabilities).
+#include "gl/caps.h"
 #include "render/renderer.h"
+#include "scene/gltf_loader.h"
 #include "playback/timeline.h"
 #include "scene/camera.h"
 
@@ -24,6 +26,9 @@ struct RenderOptions {
   scene::Framing framing;
   render::FrameSettings frame;
 };
+
+// How scenes load on this context: textures beyond its largest texture are drawn white with a warning.
+scene::LoadOptions load_options_for(const gl::Caps& caps);
 
 // The framing a playback camera asks for (shared by `render` and `play`).
 scene::Framing framing_of(const playback::Camera& camera);

@@ -232,6 +232,7 @@ TEST_P(LightField, PositionsTextureMapsBackToItsOwnPixel) {
 // With the module and the observer line a thousand screen heights away, the module's world-to-image
 // transform tends to the projection of a far camera on the observer line: Algorithm 2 must then give
 // what Algorithm 1 gives. A box standing out of a wall: contact corners around it, open faces beside.
+// The physical box is half the world box, so radii and depths must be scaled on the way.
 TEST_P(LightField, Algorithm2OnAFlatScreenModuleAgreesWithAlgorithm1) {
   scene::Scene scene;
   scene.name = "box on a wall";
@@ -241,8 +242,8 @@ TEST_P(LightField, Algorithm2OnAFlatScreenModuleAgreesWithAlgorithm1) {
   scene::update_bounds(scene);
   const lightfield::Display d = display(R"(type = "modules"
 [screen]
-width = 2.0
-height = 1.5
+width = 1.0
+height = 0.75
 [observer]
 distance = 1000.0
 [modules]
@@ -254,8 +255,8 @@ resolution = "128x96"
 [roi]
 world_min = [-1.0, -0.75, -0.5]
 world_max = [1.0, 0.75, 0.5]
-physical_min = [-1.0, -0.75, -0.5]
-physical_max = [1.0, 0.75, 0.5]
+physical_min = [-0.5, -0.375, -0.25]
+physical_max = [0.5, 0.375, 0.25]
 )");
   render::FrameSettings settings;
   settings.width = 128;
@@ -284,22 +285,23 @@ physical_max = [1.0, 0.75, 0.5]
               renderer.upload(scene, error) && renderer.configure(settings, error))
       << error;
   render::View camera;
-  camera.eye = {0.0, 0.0, 1000.0};
+  camera.eye = {0.0, 0.0, 2000.0};  // the observer line, in world units
   camera.view = glm::lookAt(camera.eye, glm::dvec3(0.0), glm::dvec3(0, 1, 0));
-  camera.near = 998.0;
-  camera.far = 1002.0;
-  camera.projection = glm::perspective(2.0 * std::atan(0.75 / 1000.0), 4.0 / 3.0, camera.near, camera.far);
+  camera.near = 1996.0;
+  camera.far = 2004.0;
+  camera.projection = glm::perspective(2.0 * std::atan(0.75 / 2000.0), 4.0 / 3.0, camera.near, camera.far);
   renderer.render(camera);
   ASSERT_EQ(renderer.gl_error(), "");
   const std::vector<glm::vec2> camera_ao = renderer.read_ao_raw();
   const std::vector<float> camera_depth = renderer.read_linear_depth();
 
-  // The same surface at the same pixels: depth from the observer line is depth from the camera.
+  // The same surface at the same pixels: depth from the observer line (physical) is half the depth
+  // from the camera (world).
   double depth_error = 0.0, sum_module = 0.0, sum_camera = 0.0, worst_block = 0.0;
   int objects = 0;
   for (size_t i = 0; i < camera_depth.size(); ++i) {
     if (camera_depth[i] <= 0.0f || module_depth[i] <= 0.0f) continue;
-    depth_error = std::max(depth_error, static_cast<double>(std::abs(camera_depth[i] - module_depth[i])));
+    depth_error = std::max(depth_error, static_cast<double>(std::abs(camera_depth[i] - 2.0f * module_depth[i])));
     sum_module += module_ao[i].x;
     sum_camera += camera_ao[i].x;
     ++objects;
@@ -318,7 +320,7 @@ physical_max = [1.0, 0.75, 0.5]
       worst_block = std::max(worst_block, std::abs(a - b) / 64.0);
     }
   EXPECT_EQ(objects, 128 * 96);  // the wall fills the image
-  EXPECT_LT(depth_error, 2e-3);  // float depth at 1000 keeps 6e-5; the two horizontal perspectives differ by 1e-3 over the box
+  EXPECT_LT(depth_error, 2e-3);  // float depth at 2000 keeps 1.2e-4; the two horizontal perspectives differ by 1e-3 over the box
   EXPECT_NEAR(sum_module / objects, sum_camera / objects, 0.003);
   EXPECT_LT(worst_block, 0.03);
   std::cout << "mean AO: Algorithm 2 " << sum_module / objects << ", Algorithm 1 " << sum_camera / objects << "; worst 8x8 block "

@@ -2,6 +2,7 @@
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "dump.h"
 #include "image_io.h"
 #include "platform/platform.h"
 #include "render/light_field.h"
@@ -29,12 +30,6 @@ bool make_folder(const std::string& dir, std::string& error) {
 
 nlohmann::json vec3_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
-nlohmann::json matrix_json(const glm::dmat4& m) {
-  nlohmann::json columns = nlohmann::json::array();
-  for (int c = 0; c < 4; ++c) columns.push_back({m[c][0], m[c][1], m[c][2], m[c][3]});
-  return columns;
-}
-
 // DIR/module-K/ (modules) or DIR/view-K/ (quilt views): the AO before and after the blur, the world
 // position and normal and the depth of the visible surface, and what the view was.
 bool dump_view(const std::string& dir, int k, const render::View& view, const render::LightFieldRenderer& renderer,
@@ -44,22 +39,7 @@ bool dump_view(const std::string& dir, int k, const render::View& view, const re
   if (!make_folder(base, error)) return false;
   const int w = targets.settings().width, h = targets.settings().height;
   const render::WorldSurface surface = view.module ? render::read_module_surface(targets) : render::read_world_surface(targets, view);
-  const std::vector<glm::vec2> raw_low = render::read_ao(targets.ao_raw, targets.ao_width(), targets.ao_height());
-  const std::vector<glm::vec2> final_ao = render::read_ao_full(renderer.programs(), targets);
-  const int shift = targets.settings().ao_settings.half_resolution ? 1 : 0;
-  std::vector<float> raw(static_cast<size_t>(w) * static_cast<size_t>(h)), blurred(raw.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      raw[i] = raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(targets.ao_width()) + static_cast<size_t>(x >> shift)].x;
-      blurred[i] = final_ao[i].x;
-    }
-  if (!write_exr(base + "/ao_raw.exr", w, h, 1, raw, {"Y"}, error) ||
-      !write_exr(base + "/ao_blurred.exr", w, h, 1, blurred, {"Y"}, error) ||
-      !write_exr(base + "/position.exr", w, h, 4, surface.position, {"R", "G", "B", "A"}, error) ||
-      !write_exr(base + "/normal.exr", w, h, 4, surface.normal, {"R", "G", "B", "A"}, error) ||
-      !write_exr(base + "/depth.exr", w, h, 1, surface.depth, {"Y"}, error))
-    return false;
+  if (!write_view_exrs(base + "/", renderer.programs(), targets, surface, error)) return false;
   nlohmann::json doc = {{"index", k}, {"width", w}, {"height", h}};
   if (view.module) {
     const lightfield::Module& m = view.module->module;
@@ -88,13 +68,7 @@ bool dump_view(const std::string& dir, int k, const render::View& view, const re
                     {"ao_blurred.exr", "AO after blur, as shaded"}};
   }
   doc["image_rows"] = "EXR rows are top to bottom";
-  std::ofstream json(base + "/view.json");
-  json << std::setw(2) << doc << "\n";
-  if (!json) {
-    error = base + "/view.json: cannot write";
-    return false;
-  }
-  return true;
+  return write_json(base + "/view.json", doc, error);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "dump.h"
 #include "image_io.h"
 #include "light_field_render.h"
 #include "platform/platform.h"
@@ -22,12 +23,6 @@
 namespace app {
 namespace {
 
-nlohmann::json matrix_json(const glm::dmat4& m) {
-  nlohmann::json columns = nlohmann::json::array();
-  for (int c = 0; c < 4; ++c) columns.push_back({m[c][0], m[c][1], m[c][2], m[c][3]});
-  return columns;
-}
-
 // Writes the raw and blurred AO, world-space position and normal, linear depth and the camera, so
 // that the AO can be evaluated by anyone at exactly the surface points the SSAO pass saw.
 bool write_dump(const std::string& dir, const render::Renderer& renderer, const scene::Camera& camera,
@@ -39,32 +34,11 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
     return false;
   }
   const int w = options.frame.width, h = options.frame.height;
-  const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
   const render::WorldSurface surface = render::read_world_surface(renderer.targets(), render::view_of(camera));
-  // At half resolution the raw AO is smaller; each pixel takes the AO texel of its 2x2 block.
-  const std::vector<glm::vec2> ao_raw_low = renderer.read_ao_raw();
-  const std::vector<glm::vec2> ao_blurred = renderer.read_ao_final();
-  const int shift = options.frame.ao_settings.half_resolution ? 1 : 0;
-  const int low_width = renderer.ssao_params().counts.z;
-  std::vector<float> raw(count), blurred(count);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      raw[i] = ao_raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(low_width) + static_cast<size_t>(x >> shift)].x;
-      blurred[i] = ao_blurred[i].x;
-    }
   const glm::dmat4 view = camera.view();
   const glm::dmat4 projection = camera.projection();
-  const std::vector<float>& depth = surface.depth;
-  const std::vector<float>& position = surface.position;
-  const std::vector<float>& normal = surface.normal;
   const std::string base = dir + "/";
-  if (!write_exr(base + "ao_raw.exr", w, h, 1, raw, {"Y"}, error) ||
-      !write_exr(base + "ao_blurred.exr", w, h, 1, blurred, {"Y"}, error) ||
-      !write_exr(base + "position.exr", w, h, 4, position, {"R", "G", "B", "A"}, error) ||
-      !write_exr(base + "normal.exr", w, h, 4, normal, {"R", "G", "B", "A"}, error) ||
-      !write_exr(base + "depth.exr", w, h, 1, depth, {"Y"}, error))
-    return false;
+  if (!write_view_exrs(base, renderer.programs(), renderer.targets(), surface, error)) return false;
 
   const shared_layout::SsaoParams& params = renderer.ssao_params();
   nlohmann::json radii = nlohmann::json::array();
@@ -111,13 +85,7 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
         {"position.exr", "world-space position of the visible surface; A = 1 on objects, 0 on background"},
         {"normal.exr", "world-space unit normal; A as above"},
         {"depth.exr", "linear view depth (distance along the view axis), 0 on background"}}}};
-  std::ofstream json(base + "camera.json");
-  json << std::setw(2) << doc << "\n";
-  if (!json) {
-    error = base + "camera.json: cannot write";
-    return false;
-  }
-  return true;
+  return write_json(base + "camera.json", doc, error);
 }
 
 }  // namespace

@@ -65,6 +65,7 @@ class Renderer {
   const View& last_view() const { return view_; }
 
   Programs& programs() { return programs_; }
+  const Programs& programs() const { return programs_; }
   const SceneGpu& scene() const { return scene_; }
   ViewTargets& targets() { return targets_; }
   const ViewTargets& targets() const { return targets_; }

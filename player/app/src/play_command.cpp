@@ -173,6 +173,10 @@ class Player {
   void draw_check_frame();
   void service_camera(double now);
   void apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now);
+  // The loader's key of every item, made once per playlist: the frame loop looks scenes up by them
+  // without building strings.
+  void make_item_keys();
+  const std::string& key_of(int item) const { return item_keys_[static_cast<size_t>(item)]; }
   render::FrameSettings settings_for(int item) const;
   double now_seconds() const;
 
@@ -192,6 +196,7 @@ class Player {
   std::unique_ptr<playback::Timeline> timeline_;
   std::unique_ptr<Loader> loader_;
   std::map<std::string, Loaded> scenes_;
+  std::vector<std::string> item_keys_;  // load_key() of each playlist item
   std::string shown_spec_;  // the scene the targets are configured for
   int configured_item_ = -2;
   std::uint64_t configured_sequence_ = 0;
@@ -365,19 +370,25 @@ render::FrameSettings Player::settings_for(int item) const {
   return settings;
 }
 
+void Player::make_item_keys() {
+  item_keys_.clear();
+  for (const playback::Item& item : playlist_->items) item_keys_.push_back(load_key(item));
+}
+
 void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now) {
   playlist_ = std::move(playlist);
+  make_item_keys();
   if (timeline_) timeline_->replace(*playlist_, now);
   else timeline_ = std::make_unique<playback::Timeline>(*playlist_, now, wall_start_ + now);
   configured_item_ = -2;
   // Scenes no item names any more are dropped with their GPU data.
   for (auto it = scenes_.begin(); it != scenes_.end();) {
     bool used = false;
-    for (const playback::Item& item : playlist_->items) used = used || load_key(item) == it->first;
+    for (const std::string& key : item_keys_) used = used || key == it->first;
     it = used ? std::next(it) : scenes_.erase(it);
   }
   for (size_t i = 0; i < playlist_->items.size(); ++i) {
-    auto found = scenes_.find(load_key(playlist_->items[i]));
+    auto found = scenes_.find(key_of(static_cast<int>(i)));
     if (found != scenes_.end() && !found->second.error.empty()) timeline_->set_playable(static_cast<int>(i), false);
   }
   watch_content();
@@ -386,7 +397,7 @@ void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, 
 void Player::request_scenes(const playback::Frame& frame) {
   for (int item : {frame.item, frame.next_item}) {
     if (item < 0) continue;
-    const std::string spec = load_key(playlist_->items[static_cast<size_t>(item)]);
+    const std::string& spec = key_of(item);
     Loaded& loaded = scenes_[spec];
     if (!loaded.requested) {
       loaded.requested = true;
@@ -415,7 +426,7 @@ void Player::handle_loader() {
       if (!loaded.gpu) {  // never loaded: skip its items; a reload that fails keeps the old content
         loaded.error = result.error;
         for (size_t i = 0; i < playlist_->items.size(); ++i)
-          if (load_key(playlist_->items[i]) == result.path) timeline_->set_playable(static_cast<int>(i), false);
+          if (key_of(static_cast<int>(i)) == result.path) timeline_->set_playable(static_cast<int>(i), false);
       }
       continue;
     }
@@ -423,7 +434,7 @@ void Player::handle_loader() {
     loaded.warnings = std::move(result.warnings);
     for (const std::string& warning : loaded.warnings) err_ << "warning: " << warning << "\n";
     for (size_t i = 0; i < playlist_->items.size(); ++i)
-      if (load_key(playlist_->items[i]) == result.path) timeline_->set_playable(static_cast<int>(i), true);
+      if (key_of(static_cast<int>(i)) == result.path) timeline_->set_playable(static_cast<int>(i), true);
     loaded.incoming_display = result.display;
     loaded.incoming = std::make_unique<render::SceneGpu>();
     loaded.incoming->begin(result.scene, caps_);
@@ -656,7 +667,7 @@ void Player::render_frame(const playback::Frame& frame) {
   if (frame.item < 0) {
     state = State::error;
   } else {
-    const std::string spec = load_key(playlist_->items[static_cast<size_t>(frame.item)]);
+    const std::string& spec = key_of(frame.item);
     auto found = scenes_.find(spec);
     if (found != scenes_.end() && found->second.gpu && found->second.gpu->ready()) {
       gpu = found->second.gpu.get();
@@ -732,7 +743,7 @@ void Player::render_frame(const playback::Frame& frame) {
 }
 
 bool Player::scene_settled(int item) const {
-  const auto found = scenes_.find(load_key(playlist_->items[static_cast<size_t>(item)]));
+  const auto found = scenes_.find(key_of(item));
   if (found == scenes_.end()) return false;
   const Loaded& loaded = found->second;
   return !loaded.error.empty() || (loaded.gpu && loaded.gpu->ready() && !loaded.incoming);
@@ -852,6 +863,7 @@ int Player::run() {
   if (!options_.log_file.empty()) log_.open(options_.log_file);
   if (!options_.out_dir.empty()) fs::create_directories(options_.out_dir);
 
+  make_item_keys();
   timeline_ = std::make_unique<playback::Timeline>(*playlist_, 0.0, wall_start_);
   watch_content();
   update_status(true);

@@ -327,6 +327,42 @@ physical_max = [0.5, 0.375, 0.25]
             << worst_block << "; depth " << depth_error << "\n";
 }
 
+// What play shows: the output presented onto the surface keeps its bytes, on an sRGB surface (egl's)
+// as on a plain one (osmesa's), letterboxed in black.
+TEST_P(LightField, PresentKeepsTheOutputsBytesOnTheSurface) {
+  const lightfield::Display d = display(R"(type = "modules"
+[screen]
+width = 1.6
+height = 0.9
+[observer]
+distance = 2.5
+[modules]
+count = 1
+x_first = 0.0
+x_last = 0.0
+z = -1.2
+resolution = "64x36"
+)");
+  render::LightFieldRenderer renderer;
+  render::FrameSettings settings;
+  settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+  ASSERT_TRUE(start(renderer, builtin("demo"), d, settings));
+  renderer.render();
+  const render::PresentTarget surface{platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
+  renderer.output().present(renderer.programs(), surface, 64, 64);
+  ASSERT_EQ(renderer.gl_error(), "");
+  const std::vector<uint8_t> output = renderer.read_output(), shown = render::read_presented(surface, 64, 64);
+  for (int row = 0; row < 64; ++row)
+    for (int x = 0; x < 64; ++x) {
+      const size_t at = (static_cast<size_t>(row) * 64 + static_cast<size_t>(x)) * 4;
+      const int inside = row - 14;  // 36 rows centred in 64
+      for (int c = 0; c < 3; ++c) {
+        const int expected = inside >= 0 && inside < 36 ? output[(static_cast<size_t>(inside) * 64 + static_cast<size_t>(x)) * 4 + static_cast<size_t>(c)] : 0;
+        ASSERT_EQ(shown[at + static_cast<size_t>(c)], expected) << x << "," << row << " channel " << c;
+      }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, LightField, ::testing::Values("egl", "osmesa"), [](const auto& param) { return param.param; });
 
 }  // namespace

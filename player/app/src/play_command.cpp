@@ -720,7 +720,7 @@ void Player::render_frame(const playback::Frame& frame) {
     // Every module or view, then what the display is fed (a quilt's panel image, the modules'
     // montage) scaled onto the surface. Per-pass times are per view here: the frame is not timed by pass.
     light_field_.render(programs_, *gpu, light_field_targets_, frame.fade, false, {}, &gl_error_);
-    light_field_.present(present_, platform_->size().width, platform_->size().height);
+    light_field_.present(programs_, present_, platform_->size().width, platform_->size().height);
   } else if (gpu != nullptr) {
     const render::Frame pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
     render::render_view(pass, present_, frame.fade);

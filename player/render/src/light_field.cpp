@@ -49,7 +49,7 @@ bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const
   // has nothing to measure: it stays off unless asked for.
   if (settings.prepass == Prepass::automatic) settings.prepass = Prepass::off;
   if (!targets.configure(programs, caps, settings, scene_radius, false, error, modules)) return false;
-  if (!modules && !programs.build_interleave(error)) return false;
+  if (!programs.build_interleave(error)) return false;  // also the copy present() uses
   background_ = settings.background;
   view_size_ = {settings.width, settings.height};
 
@@ -204,7 +204,7 @@ void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTar
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void LightFieldOutput::present(const PresentTarget& target, int width, int height) const {
+void LightFieldOutput::present(const Programs& programs, const PresentTarget& target, int width, int height) const {
   const glm::ivec2 source = quilt() ? native_size() : output_size_;
   // Fit inside, keeping the aspect; the rest is black. A quilt's panel image is meant pixel for pixel,
   // and is, when the surface is the panel.
@@ -215,9 +215,21 @@ void LightFieldOutput::present(const PresentTarget& target, int width, int heigh
   gl::api.Viewport(target.x, target.y, width, height);
   const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   gl::api.ClearBufferfv(GL_COLOR, 0, black);
-  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, quilt() ? native_fbo_.id() : output_fbo_.id());
-  gl::api.BlitFramebuffer(0, 0, source.x, source.y, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, w == source.x ? GL_NEAREST : GL_LINEAR);
-  gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  if (target.srgb) {
+    // The outputs hold sRGB-encoded bytes; a blit into an sRGB framebuffer would encode them again.
+    gl::api.Viewport(x, y, w, h);
+    gl::api.Disable(GL_DEPTH_TEST);
+    gl::api.UseProgram(programs.decode_copy.id());
+    gl::api.Uniform4i(programs.decode_copy_rect, x, y, w, h);
+    detail::bind_texture(0, quilt() ? native_texture_ : output_texture_);
+    gl::api.BindVertexArray(programs.empty_vertex_array.id());
+    gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl::api.BindVertexArray(0);
+  } else {
+    gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, quilt() ? native_fbo_.id() : output_fbo_.id());
+    gl::api.BlitFramebuffer(0, 0, source.x, source.y, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, w == source.x ? GL_NEAREST : GL_LINEAR);
+    gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  }
   gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
 }
 

@@ -99,6 +99,10 @@ bool Programs::build_interleave(std::string& error) {
   interleave_constants = gl::uniform(interleave, "u_constants");
   interleave_panel = gl::uniform(interleave, "u_panel");
   interleave_layout = gl::uniform(interleave, "u_layout");
+  decode_copy = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "decode_copy.frag"}}, "", error);
+  if (!decode_copy) return false;
+  detail::assign_units(decode_copy, {"u_source"});
+  decode_copy_rect = gl::uniform(decode_copy, "u_rect");
   gl::api.UseProgram(0);
   return true;
 }

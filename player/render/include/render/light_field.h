@@ -49,7 +49,7 @@ class LightFieldOutput {
               const AfterView& after_view, std::string* gl_error);
   // What the display is fed, scaled to fit `width` x `height` of `target` (letterboxed): the native
   // panel image of a quilt, the montage of modules.
-  void present(const PresentTarget& target, int width, int height) const;
+  void present(const Programs& programs, const PresentTarget& target, int width, int height) const;
 
   int views() const { return static_cast<int>(views_.size()); }
   int rendered_views() const;

@@ -40,6 +40,9 @@ class Programs {
   bool build_interleave(std::string& error);
   gl::Program interleave;
   GLint interleave_constants = -1, interleave_panel = -1, interleave_layout = -1;
+  // An sRGB-encoded texture into a framebuffer that encodes itself (decode_copy.frag), built with it.
+  gl::Program decode_copy;
+  GLint decode_copy_rect = -1;
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs

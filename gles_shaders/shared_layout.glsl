@@ -17,6 +17,11 @@
 #define BINDING_COMPOSITE_PARAMS 2
 #define BINDING_UPSAMPLE_PARAMS 3
 #define BINDING_MODULE_PARAMS 4
+#define BINDING_TEMPORAL_PARAMS 5
+
+// Temporal accumulation: while the camera moves, history is trusted for at most this many frames,
+// so a surface sliding across the screen carries at most that much resampled past with it.
+#define TEMPORAL_MOVING_FRAMES 8
 
 // What the present pass shows: the shaded image or one of the debug outputs.
 #define OUTPUT_COLOR 0
@@ -66,6 +71,21 @@ struct CompositeParams {
   ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
                           // w: unused
   ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
+};
+
+// Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by
+// reprojecting each pixel's surface point through the previous view, which is exact for static
+// geometry under a moving camera, and kept where depth and normal agree.
+struct TemporalParams {
+  mat4 current_to_previous;  // current view space -> previous view space
+  mat4 previous_projection;  // previous view space -> previous clip space
+  mat4 view_to_world;        // current view space -> world (normals are compared in world space)
+  vec4 unproject;            // the current frame's, as SsaoParams.unproject
+  vec4 depth;                // x: current far; y: previous far; z: depth tolerance relative to depth;
+                             // w: least cosine between the normals of a kept history texel and the pixel
+  ivec4 config;              // x: 1 when there is a history; y: frames averaged at most; z: AO resolution
+                             // shift (0 full, 1 half); w: 1 when the view moved since the previous frame
+  ivec4 size;                // x, y: AO width and height; z, w: full width and height
 };
 
 // One optical module of a light field display (lightfield/modules.h, Module): what the G-buffer's

@@ -7,11 +7,15 @@ namespace {
 
 using test::Harness;
 
+// The defaults, half-resolution AO upsampled inside the present pass, but one frame's AO: temporal
+// accumulation makes a frame depend on the ones before it on purpose (TemporalRunsRepeatBitForBit
+// checks that it does so the same way every time).
 render::FrameSettings settings_for(int width, int height) {
-  render::FrameSettings settings;  // the defaults: half-resolution AO upsampled inside the present pass
+  render::FrameSettings settings;
   settings.width = width;
   settings.height = height;
   settings.check_errors = true;
+  settings.temporal = false;
   return settings;
 }
 
@@ -104,6 +108,29 @@ TEST_P(Present, AFrameOfAnAnimatedRunDoesNotDependOnTheFramesBeforeIt) {
   EXPECT_EQ(direct.renderer.read_color(), after_run);
   EXPECT_EQ(run.renderer.gl_error(), "");
   EXPECT_EQ(direct.renderer.gl_error(), "");
+}
+
+// With temporal accumulation a frame is the average of the ones before it: the same frames must
+// give the same average whether they went out in bursts or were each read back (waiting for the GPU)
+// before the next, over a turn of the camera and then a still stretch that fills the history.
+TEST_P(Present, TemporalRunsRepeatBitForBit) {
+  render::FrameSettings settings = settings_for(160, 120);
+  settings.temporal = true;
+  settings.history = 8;
+  auto run = [&](bool read_each) {
+    Harness h;
+    EXPECT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+    for (int frame = 1; frame <= 16; ++frame) {
+      h.renderer.render(camera_at(h, 20.0 + 3.0 * std::min(frame, 8)));
+      if (read_each) (void)h.renderer.read_color();
+    }
+    EXPECT_EQ(h.renderer.gl_error(), "");
+    EXPECT_EQ(h.renderer.ao_frames_averaged(), 8);
+    return h.renderer.read_color();
+  };
+  const std::vector<uint8_t> bursts = run(false);
+  EXPECT_EQ(run(true), bursts);
+  EXPECT_EQ(run(false), bursts);
 }
 
 TEST_P(Present, FadeDarkensTheWholeImage) {

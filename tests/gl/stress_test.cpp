@@ -23,6 +23,7 @@ render::FrameSettings stress_settings() {
   settings.blur.mode = ssao::Blur::off;  // compare the estimator itself
   settings.ao_settings.half_resolution = false;  // pixel for pixel against the untouched case
   settings.ao_settings.samples = 16;
+  settings.temporal = false;  // one frame's numerics; TemporalAccumulationStaysFiniteAtEveryNearFarRatio below
   return settings;
 }
 
@@ -200,6 +201,37 @@ TEST_P(Stress, NearFarRatiosUpToAMillion) {
     EXPECT_LE(d.mean, kMeanBound) << "near/far 1/" << ratio;
     EXPECT_LE(d.worst_share, kShareBound) << "near/far 1/" << ratio;
     expect_all_finite(h, "near/far ratio " + std::to_string(ratio));
+  }
+}
+
+// Temporal accumulation reprojects each pixel through the inverse view and the previous
+// projection. Over a slow turn of the camera, its average at near/far ratios up to a million must
+// stay what it is at the usual ratio, and finite.
+TEST_P(Stress, TemporalAccumulationStaysFiniteAtEveryNearFarRatio) {
+  render::FrameSettings settings = stress_settings();
+  settings.temporal = true;
+  settings.history = 8;
+  auto accumulated = [&](Harness& h, double ratio) {
+    EXPECT_TRUE(h.start(GetParam(), spheres(), settings));
+    h.renderer.targets().reset_history();
+    for (int frame = 0; frame < 8; ++frame) {
+      scene::Framing framing;
+      framing.azimuth_deg = 30.0 + frame;
+      scene::Camera camera = scene::frame(h.scene.bounds, framing, kSide, kSide);
+      if (ratio > 0.0) camera.near = camera.far / ratio;
+      h.renderer.render(camera);
+    }
+    EXPECT_EQ(h.renderer.gl_error(), "");
+    return snapshot(h);
+  };
+  Harness usual;
+  const Snapshot reference = accumulated(usual, 0.0);
+  for (double ratio : {1e3, 1e6}) {
+    Harness h;
+    const Difference d = difference(reference, accumulated(h, ratio));
+    EXPECT_LE(d.mean, kMeanBound) << "near/far 1/" << ratio;
+    EXPECT_LE(d.worst_share, kShareBound) << "near/far 1/" << ratio;
+    expect_all_finite(h, "temporal at near/far ratio " + std::to_string(ratio));
   }
 }
 

@@ -26,7 +26,9 @@ TEST(AobenchConfigs, NamedConfigurationsAreThePapersAndThePlayersDefault) {
   ASSERT_TRUE(fallback.has_value());
   render::FrameSettings player;
   EXPECT_FALSE(fallback->settings.reuse_static_ao);  // every frame computes the AO it times
+  EXPECT_FALSE(fallback->settings.temporal);         // and that frame's own AO, not an average
   player.reuse_static_ao = false;
+  player.temporal = false;
   EXPECT_EQ(aobench::describe(fallback->settings), aobench::describe(player));
 }
 
@@ -226,6 +228,8 @@ TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
       {"skip-background", {"on", "off"}, {"0"}, "on|off"},
       {"untextured-variant", {"on", "off"}, {"auto"}, "on|off"},
       {"reuse-ao", {"on", "off"}, {"auto"}, "on|off"},
+      {"temporal", {"on", "off"}, {"1"}, "on|off"},
+      {"history", {"1", "255", "32"}, {"0", "256", "-1", "8.0", ""}, "1..255"},
       {"prepass", {"on", "off", "auto"}, {"maybe"}, "on|off|auto"},
       {"view", {"color", "ao", "normal", "depth"}, {"colour"}, "color|ao|normal|depth"},
   };

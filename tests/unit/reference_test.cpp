@@ -5,6 +5,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace {
 
 constexpr int kSize = 64;
@@ -302,6 +305,61 @@ TEST(Reference, GaussianBlurPreservesAConstantAndBilateralStopsAtDepthEdges) {
   EXPECT_GT(gaussian[right].x, 0.1f);
   EXPECT_NEAR(bilateral[left].x, 1.0f, 1e-3);  // the bilateral one does not
   EXPECT_NEAR(bilateral[right].x, 0.0f, 1e-3);
+}
+
+}  // namespace
+
+namespace {
+
+// Temporal accumulation turns the samples frame by frame. Frame 0 is the fixed tables; the turns of
+// the first N frames fill the gap between neighbouring tile angles evenly (R2: the largest gap
+// between sorted shares stays within a small multiple of 1/N), every entry of the tile moves by the
+// same angle, and the horizon estimator's step jitter moves too, staying in [0, 1).
+TEST(Frame, AdvancingTurnsTheTileEvenlyOverFrames) {
+  for (ssao::Estimator estimator : ssao::kEstimators) {
+    ssao::AoSettings settings;
+    settings.estimator = estimator;
+    const auto base = params_for(settings, 1.0f);
+    auto params = base;
+    ssao::advance_frame(params, settings, 0);
+    for (int i = 0; i < SSAO_ROTATION_TILE * SSAO_ROTATION_TILE; ++i) {
+      EXPECT_NEAR(params.rotation[i].x, base.rotation[i].x, 1e-6f);
+      EXPECT_NEAR(params.rotation[i].y, base.rotation[i].y, 1e-6f);
+    }
+    for (int i = 0; i < base.counts.x; ++i) EXPECT_NEAR(params.kernel[i].y, base.kernel[i].y, 1e-6f);
+    const double gap = 2.0 * 3.14159265358979 / (SSAO_ROTATION_TILE * SSAO_ROTATION_TILE);
+    std::vector<double> shares;
+    for (unsigned frame = 0; frame < 64; ++frame) {
+      ssao::advance_frame(params, settings, frame);
+      double turn = 0.0;
+      for (int i = 0; i < SSAO_ROTATION_TILE * SSAO_ROTATION_TILE; ++i) {
+        const double a = std::atan2(params.rotation[i].y, params.rotation[i].x) -
+                         std::atan2(base.rotation[i].y, base.rotation[i].x);
+        const double wrapped = std::remainder(a, 2.0 * 3.14159265358979);
+        const double share = (wrapped < -1e-6 ? wrapped + 2.0 * 3.14159265358979 : std::max(wrapped, 0.0)) / gap;
+        if (i == 0) turn = share;
+        EXPECT_NEAR(share, turn, 1e-4) << "frame " << frame << ", entry " << i;
+      }
+      EXPECT_GE(turn, 0.0);
+      EXPECT_LT(turn, 1.0 + 1e-6);
+      shares.push_back(turn);
+      if (estimator == ssao::Estimator::horizon) {
+        for (int i = 0; i < params.counts.x; ++i) {
+          EXPECT_GE(params.kernel[i].y, 0.0f);
+          EXPECT_LT(params.kernel[i].y, 1.0f);
+        }
+        if (frame > 0) {
+          EXPECT_NE(params.kernel[0].y, base.kernel[0].y) << "frame " << frame;
+        }
+      } else {
+        for (int i = 0; i < params.counts.x; ++i) EXPECT_EQ(params.kernel[i], base.kernel[i]);
+      }
+    }
+    std::sort(shares.begin(), shares.end());
+    double largest = 1.0 - shares.back() + shares.front();
+    for (size_t i = 1; i < shares.size(); ++i) largest = std::max(largest, shares[i] - shares[i - 1]);
+    EXPECT_LE(largest, 2.5 / 64.0) << ssao::name(estimator);
+  }
 }
 
 }  // namespace

@@ -8,6 +8,9 @@ namespace {
 render::FrameSettings defaults() {
   render::FrameSettings settings;  // the player's defaults
   settings.reuse_static_ao = false;  // every frame computes its AO, so every frame times it
+  // One frame's AO: the timed frames repeat one camera, and with accumulation the estimate would be
+  // their average. temporal=on in --configs measures that.
+  settings.temporal = false;
   return settings;
 }
 

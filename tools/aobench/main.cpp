@@ -30,7 +30,7 @@ namespace {
 
 // The settings columns of the CSV, in the codec's names.
 constexpr const char* kCsvSettings[] = {"estimator", "samples", "radii", "pattern", "blur", "resolution", "depth-chain",
-                                        "skip-radii", "skip-background", "untextured-variant", "reuse-ao", "prepass"};
+                                        "skip-radii", "skip-background", "untextured-variant", "reuse-ao", "temporal", "prepass"};
 
 namespace fs = std::filesystem;
 
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
           const render::PassTimes pass = renderer.collect_times();
           double ao_ms = 0.0, frame_ms = 0.0;
           // Upsampling happens inside the present pass, which also shades: it is in frame_ms, not here.
-          for (int p : {render::kDepthChain, render::kSsao, render::kBlurH, render::kBlurV})
+          for (int p : {render::kDepthChain, render::kSsao, render::kTemporal, render::kBlurH, render::kBlurV})
             ao_ms += std::max(0.0, pass.ms[static_cast<size_t>(p)]);
           for (double ms : pass.ms) frame_ms += std::max(0.0, ms);
           if (frame > 0) {

@@ -78,10 +78,14 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
         {"kernel_unit_ball", kernel},
         {"blur", std::string(ssao::name(frame.blur.mode))},
         {"blur_radius", frame.blur.radius},
-        {"blur_sigma", frame.blur.sigma}}},
+        {"blur_sigma", frame.blur.sigma},
+        {"temporal", frame.temporal},
+        {"history", frame.history},
+        {"frames_averaged", renderer.ao_frames_averaged()}}},
       {"files",
-       {{"ao_raw.exr", "AO before blur, [0,1], 0 on background"},
-        {"ao_blurred.exr", "AO after blur (equal to ao_raw when blur is off)"},
+       {{"ao_raw.exr", "the last frame's own AO, before temporal accumulation and blur, [0,1], 0 on background"},
+        {"ao_blurred.exr", "the AO the frame was shaded with: the average over ao.frames_averaged frames (samples "
+                           "turned anew each frame), then blurred when blur is on"},
         {"position.exr", "world-space position of the visible surface; A = 1 on objects, 0 on background"},
         {"normal.exr", "world-space unit normal; A as above"},
         {"depth.exr", "linear view depth (distance along the view axis), 0 on background"}}}};
@@ -204,8 +208,10 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     else
       out << "depth prepass: auto needs two frames to choose (--frames 3 or more)\n";
   }
+  if (renderer.ao_frames_averaged() > 1)
+    out << "AO averaged over " << renderer.ao_frames_averaged() << " frames (temporal accumulation; --temporal off for one frame's)\n";
   if (reused > 0)
-    out << "AO reused on " << reused << " of " << frames << " frames (camera still; --reuse-ao off to time every frame)\n";
+    out << "AO reused on " << reused << " of " << frames << " frames (camera still, history full; --reuse-ao off to time every frame)\n";
   if (!options.output.empty()) out << "wrote " << options.output << "\n";
   if (!options.dump_dir.empty()) out << "dumped AO, position, normal, depth and camera.json to " << options.dump_dir << "\n";
   return 0;

@@ -59,6 +59,8 @@ struct Row {
   std::string (*get)(const FrameSettings&);
 };
 
+static_assert(TEMPORAL_MOVING_FRAMES == 8, "the help of `history` names the moving limit");
+
 const Row kRows[] = {
     {{"ao", "Ambient occlusion on or off", "on|off"},
      nullptr,
@@ -116,10 +118,18 @@ const Row kRows[] = {
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.untextured_variant); },
      [](const FrameSettings& s) { return on_off(s.untextured_variant); }},
-    {{"reuse-ao", "Keep the last frame's AO while camera and scene stand still (off: recompute every frame, for timing)", "on|off"},
+    {{"reuse-ao", "Keep the last frame's AO while camera and scene stand still, once temporal has averaged history frames (off: recompute every frame, for timing)", "on|off"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.reuse_static_ao); },
      [](const FrameSettings& s) { return on_off(s.reuse_static_ao); }},
+    {{"temporal", "Accumulate AO over frames: samples turn each frame, the previous frames' AO is reprojected and averaged in", "on|off"},
+     nullptr,
+     [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.temporal); },
+     [](const FrameSettings& s) { return on_off(s.temporal); }},
+    {{"history", "Frames the temporal accumulation averages at most (8 at most while the camera moves)", "1..255"},
+     nullptr,
+     [](FrameSettings& s, std::string_view v) { return parse_int(v, 1, 255, s.history); },
+     [](const FrameSettings& s) { return std::to_string(s.history); }},
     {{"prepass", "Depth prepass before the G-buffer: on, off, or auto (measure both, keep the faster)", ""},
      [] { return names::choices<Prepass>(kPrepassNames); },
      [](FrameSettings& s, std::string_view v) { return parse_enum<Prepass>(kPrepassNames, v, s.prepass); },

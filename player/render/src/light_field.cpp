@@ -48,6 +48,9 @@ bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const
   // Views share one set of targets, so the prepass's automatic choice (measured per view over frames)
   // has nothing to measure: it stays off unless asked for.
   if (settings.prepass == Prepass::automatic) settings.prepass = Prepass::off;
+  // For the same reason there is no history to accumulate from: the previous frame of these targets
+  // is another view's.
+  settings.temporal = false;
   if (!targets.configure(programs, caps, settings, scene_radius, false, error, modules)) return false;
   if (!programs.build_interleave(error)) return false;  // also the copy present() uses
   background_ = settings.background;

@@ -18,6 +18,7 @@ std::string_view pass_name(int pass) {
     case kGBuffer: return "g-buffer";
     case kDepthChain: return "depth chain";
     case kSsao: return "ssao";
+    case kTemporal: return "temporal";
     case kBlurH: return "blur horizontal";
     case kBlurV: return "blur vertical";
     case kPresent: return "present";
@@ -115,6 +116,45 @@ void begin_raster(const Frame& frame) {
 
 float inverse_far(const View& view) { return static_cast<float>(1.0 / view.far); }
 
+// How far a history texel's depth may differ from the reprojected point's, relative to that depth,
+// and how far its normal may turn, before it counts as another surface (a disocclusion). The depth
+// tolerance covers a slanted face's change across the bilinear footprint; the normal test catches
+// what depth cannot tell apart, such as a crease.
+constexpr float kHistoryDepthTolerance = 0.03f;
+constexpr float kHistoryNormalCosine = 0.9f;
+
+// Blends this frame's AO into the reprojected average of the previous ones (temporal.comp).
+void accumulate(const Frame& frame, bool moved) {
+  ViewTargets& targets = frame.targets;
+  const FrameSettings& settings = targets.settings();
+  const View& view = frame.view;
+  const glm::dmat4 view_to_world = glm::inverse(view.view);
+  shared_layout::TemporalParams& params = targets.temporal_params;
+  params.current_to_previous = glm::mat4(targets.ao_view * view_to_world);
+  params.previous_projection = glm::mat4(targets.ao_projection);
+  params.view_to_world = glm::mat4(view_to_world);
+  params.unproject = targets.ssao_params.unproject;
+  params.depth = glm::vec4(static_cast<float>(view.far), static_cast<float>(targets.ao_far), kHistoryDepthTolerance,
+                           kHistoryNormalCosine);
+  params.config = glm::ivec4(targets.have_ao ? 1 : 0, settings.history, targets.ssao_params.config.y, moved ? 1 : 0);
+  params.size = glm::ivec4(targets.ao_width(), targets.ao_height(), settings.width, settings.height);
+  detail::update_uniform_buffer(targets.temporal_ubo, &params, sizeof params);
+
+  const int previous = targets.history_current, next = 1 - previous;
+  gl::api.UseProgram(frame.programs.temporal.id());
+  gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_TEMPORAL_PARAMS, targets.temporal_ubo.id());
+  bind_texture(0, targets.ao_raw);
+  bind_texture(1, targets.normal);
+  bind_texture(2, targets.history[previous]);
+  bind_texture(3, targets.history_normal[previous]);
+  gl::api.BindImageTexture(0, targets.history[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl::api.BindImageTexture(1, targets.history_normal[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+  gl::api.DispatchCompute(groups(targets.ao_width(), SSAO_GROUP_SIZE), groups(targets.ao_height(), SSAO_GROUP_SIZE), 1);
+  gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  targets.history_current = next;
+  frame.finish_pass(kTemporal);
+}
+
 }  // namespace
 
 void depth_prepass(const Frame& frame) {
@@ -139,6 +179,12 @@ void gbuffer_pass(const Frame& frame, bool after_prepass) {
   gl::api.Disable(GL_DEPTH_TEST);
   gl::api.Disable(GL_CULL_FACE);
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  // GL orders a draw into a texture before a later dispatch that samples it, but Mesa 22.3's
+  // llvmpipe starts the dispatch while its rasteriser threads may still be drawing tiles of the
+  // G-buffer: SSAO then read cleared tiles as background, seen once frames carried history (two
+  // identical runs of 16 frames differed). Any glMemoryBarrier makes llvmpipe wait; elsewhere it
+  // costs no more than the wait the dispatch needs anyway.
+  gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   frame.finish_pass(kGBuffer);
 }
 
@@ -146,10 +192,12 @@ bool ao_passes(const Frame& frame) {
   ViewTargets& targets = frame.targets;
   const FrameSettings& settings = targets.settings();
   const View& view = frame.view;
-  // A still view over a static scene sees the same AO: keep it rather than compute it again. Light
-  // field modules share one set of targets, so each module's AO is computed anew.
-  targets.reused_ao = settings.reuse_static_ao && !view.module && targets.have_ao && view.view == targets.ao_view &&
-                      view.projection == targets.ao_projection;
+  // A still view over a static scene sees the same AO: keep it rather than compute it again, once
+  // the temporal average has all its frames. Light field modules share one set of targets, so each
+  // module's AO is computed anew.
+  const bool temporal = targets.temporal();
+  const bool still = targets.have_ao && view.view == targets.ao_view && view.projection == targets.ao_projection;
+  targets.reused_ao = settings.reuse_static_ao && !view.module && still && (!temporal || targets.still_frames >= settings.history);
   if (targets.reused_ao) return false;
   const int w = settings.width, h = settings.height;
   const int ao_w = targets.ao_width(), ao_h = targets.ao_height();
@@ -162,6 +210,7 @@ bool ao_passes(const Frame& frame) {
   frame_view.nearest_depth = static_cast<float>(std::max(centre_distance - frame.scene.radius(), view.near));
   frame_view.scene_radius = static_cast<float>(frame.scene.radius());
   ssao::update_for_frame(params, settings.ao_settings, frame_view);
+  if (temporal) ssao::advance_frame(params, settings.ao_settings, targets.ao_frame);
   if (view.module) {
     // Algorithm 2 maps every sample itself and reads the full-resolution depth: no depth chain, and
     // no radius is skipped by a screen-space size that has no meaning here.
@@ -202,10 +251,12 @@ bool ao_passes(const Frame& frame) {
   gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   frame.finish_pass(kSsao);
 
+  if (temporal) accumulate(frame, !still);
+
   if (settings.blur.mode != ssao::Blur::off) {
     const gl::Program& blur = settings.blur.mode == ssao::Blur::bilateral ? frame.programs.blur_bilateral : frame.programs.blur_gaussian;
     gl::api.UseProgram(blur.id());
-    const gl::Texture* sources[2] = {&targets.ao_raw, &targets.ao_temp};
+    const gl::Texture* sources[2] = {&targets.ao_unblurred(), &targets.ao_temp};
     const gl::Texture* destinations[2] = {&targets.ao_temp, &targets.ao_blurred};
     for (int direction = 0; direction < 2; ++direction) {
       gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_BLUR_PARAMS, targets.blur_ubo[direction].id());
@@ -218,9 +269,12 @@ bool ao_passes(const Frame& frame) {
       frame.finish_pass(direction == 0 ? kBlurH : kBlurV);
     }
   }
+  targets.still_frames = still ? std::min(targets.still_frames + 1, settings.history) : 1;
   targets.ao_view = view.view;
   targets.ao_projection = view.projection;
+  targets.ao_far = view.far;
   targets.have_ao = true;
+  ++targets.ao_frame;
   return true;
 }
 

@@ -55,6 +55,14 @@ std::vector<glm::vec2> read_ao(const gl::Texture& texture, int w, int h) {
   return ao;
 }
 
+std::vector<float> read_history_frames(const ViewTargets& targets) {
+  if (!targets.temporal()) return {};
+  const std::vector<float> rgba = read_rgba_float(targets.ao_unblurred(), targets.ao_width(), targets.ao_height());
+  std::vector<float> frames(rgba.size() / 4);
+  for (size_t i = 0; i < frames.size(); ++i) frames[i] = rgba[i * 4 + 2];
+  return frames;
+}
+
 std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets& targets) {
   const FrameSettings& settings = targets.settings();
   if (!settings.ao_settings.half_resolution) return read_ao(targets.ao_result(), targets.ao_width(), targets.ao_height());

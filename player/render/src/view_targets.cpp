@@ -9,6 +9,8 @@ using detail::make_uniform_buffer;
 
 void ViewTargets::reset_history() {
   have_ao = reused_ao = false;
+  ao_frame = 0;
+  still_frames = 0;
   raster_with = raster_without = -1.0;
 }
 
@@ -47,6 +49,10 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     ao_raw = make_target(GL_RGBA16F, ao_width(), ao_height());
     ao_temp = make_target(GL_RGBA16F, ao_width(), ao_height());
     ao_blurred = make_target(GL_RGBA16F, ao_width(), ao_height());
+    for (int i = 0; i < 2; ++i) {
+      history[i] = modules ? gl::Texture{} : make_target(GL_RGBA32F, ao_width(), ao_height());
+      history_normal[i] = modules ? gl::Texture{} : make_target(GL_RGBA8_SNORM, ao_width(), ao_height());
+    }
 
     gbuffer_fbo = gl::make_framebuffer();
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo.id());
@@ -71,6 +77,8 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
       blur_ubo[direction] = make_uniform_buffer(&blur_params[direction], sizeof blur_params[direction]);
     shared_layout::CompositeParams composite{};
     composite_ubo = make_uniform_buffer(&composite, sizeof composite);
+    temporal_params = shared_layout::TemporalParams{};
+    temporal_ubo = modules ? gl::Buffer{} : make_uniform_buffer(&temporal_params, sizeof temporal_params);
     shared_layout::ModuleParams module_params{};
     module_ubo = modules ? make_uniform_buffer(&module_params, sizeof module_params) : gl::Buffer{};
     modules_ = modules;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace ssao {
 
@@ -29,6 +30,27 @@ shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float bas
   for (size_t i = 0; i < angles.size(); ++i)
     params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.0f, 0.0f);
   return params;
+}
+
+void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings, unsigned frame) {
+  // R2 (Roberts 2018): the generalised golden ratio in two dimensions; fract(n * a) with n counted
+  // modulo 2^20 keeps the product exact in double over months of frames.
+  constexpr double kPlastic = 1.32471795724474602596;
+  const double n = static_cast<double>(frame % (1u << 20));
+  const double turn_share = std::fmod(n / kPlastic, 1.0);
+  const double step_share = std::fmod(n / (kPlastic * kPlastic), 1.0);
+  const std::span<const float> angles = rotation_angles();
+  // The tile's angles are (k + 0.5) / 16 of a full turn: a frame moves them by up to one gap.
+  const double gap = 2.0 * std::numbers::pi / static_cast<double>(angles.size());
+  for (size_t i = 0; i < angles.size(); ++i) {
+    const double angle = angles[i] + turn_share * gap;
+    params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.0f, 0.0f);
+  }
+  if (settings.estimator != Estimator::horizon) return;
+  const int samples = params.counts.x;
+  const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
+  for (int i = 0; i < samples; ++i)
+    params.kernel[i].y = static_cast<float>(std::fmod(points[static_cast<size_t>(i)].y + step_share, 1.0));
 }
 
 int depth_chain_levels(int width, int height) {

@@ -12,7 +12,7 @@
 
 namespace render {
 
-enum Pass { kDepthPrepass, kGBuffer, kDepthChain, kSsao, kBlurH, kBlurV, kPresent, kPassCount };
+enum Pass { kDepthPrepass, kGBuffer, kDepthChain, kSsao, kTemporal, kBlurH, kBlurV, kPresent, kPassCount };
 std::string_view pass_name(int pass);
 
 // Where the present pass writes: a framebuffer (0: the platform's), the view's rectangle in it, and
@@ -36,7 +36,8 @@ struct Frame {
 
 void depth_prepass(const Frame& frame);
 void gbuffer_pass(const Frame& frame, bool after_prepass);
-// The AO passes (depth chain, SSAO, blur). Returns false when the history was kept instead.
+// The AO passes (depth chain, SSAO, temporal accumulation, blur). Returns false when the last
+// frame's AO was kept instead.
 bool ao_passes(const Frame& frame);
 // Upsampling (when AO is at half resolution), shading and sRGB encoding, into `target`. `fade`
 // multiplies the image (transitions between playlist items).

@@ -17,6 +17,8 @@ std::vector<float> read_linear_depth(const ViewTargets& targets);
 std::vector<glm::vec3> read_view_normals(const ViewTargets& targets);
 // r: AO, g: depth / far, at the AO resolution.
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int width, int height);
+// Per AO texel, how many frames the temporal average holds (0 on background); empty without temporal.
+std::vector<float> read_history_frames(const ViewTargets& targets);
 // The AO the present pass shaded with, at full resolution: upsampled exactly as the present pass
 // does it (the same GLSL function) when AO runs at half resolution.
 std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets& targets);

@@ -13,6 +13,7 @@
 #include "render/view.h"
 #include "render/view_targets.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -49,13 +50,16 @@ class Renderer {
   std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets_); }
   std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets_); }
   std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
-  std::vector<glm::vec2> read_ao_blurred() const;  // ditto; equal to read_ao_raw() with blur off
-  std::vector<glm::vec2> read_ao_final() const;        // full resolution: what the present pass used
+  std::vector<glm::vec2> read_ao_blurred() const;  // ditto, what the present pass reads: blurred, else the temporal average, else raw
+  std::vector<glm::vec2> read_ao_final() const;
+  std::vector<float> read_history_frames() const { return render::read_history_frames(targets_); }        // full resolution: what the present pass used
 
   const shared_layout::SsaoParams& ssao_params() const { return targets_.ssao_params; }
   const shared_layout::BlurParams& blur_params(int direction) const { return targets_.blur_params[direction]; }
   shared_layout::UpsampleParams upsample_params() const { return render::upsample_params(targets_); }
   bool reused_ao() const { return targets_.reused_ao; }
+  // Frames the AO shown is the average of (1 without temporal accumulation).
+  int ao_frames_averaged() const { return targets_.temporal() ? std::max(targets_.still_frames, 1) : 1; }
   bool prepass_in_use() const { return targets_.prepass_now; }
   double raster_ms_with_prepass() const { return targets_.raster_with; }
   double raster_ms_without_prepass() const { return targets_.raster_without; }

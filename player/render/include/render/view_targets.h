@@ -25,18 +25,28 @@ class ViewTargets {
   const FrameSettings& settings() const { return settings_; }
   int ao_width() const { return ssao_params.counts.z; }
   int ao_height() const { return ssao_params.counts.w; }
-  // The AO texture the present pass reads: raw, or blurred when a blur is on (at the AO resolution).
-  const gl::Texture& ao_result() const { return settings_.blur.mode != ssao::Blur::off ? ao_blurred : ao_raw; }
+  // Whether this view accumulates AO over frames (never for light field modules, which share
+  // one set of targets among many views).
+  bool temporal() const { return settings_.temporal && !modules_; }
+  // The AO before the blur: this frame's, or its average over frames (at the AO resolution).
+  const gl::Texture& ao_unblurred() const { return temporal() ? history[history_current] : ao_raw; }
+  // The AO texture the present pass reads: blurred when a blur is on, else ao_unblurred().
+  const gl::Texture& ao_result() const { return settings_.blur.mode != ssao::Blur::off ? ao_blurred : ao_unblurred(); }
 
   bool modules() const { return modules_; }
 
   gl::Texture albedo, normal, linear_depth, depth, ao_raw, ao_temp, ao_blurred;
   gl::Texture positions;  // modules only: world position per pixel, a = 1 on objects
+  // Temporal accumulation, ping-ponged: r = averaged AO, g = depth / far, b = frames averaged (rgba32f); and
+  // the world normal of each texel, for the next frame's disocclusion test.
+  gl::Texture history[2], history_normal[2];
+  int history_current = 0;  // the one written last
   gl::Framebuffer gbuffer_fbo;
-  gl::Buffer ssao_ubo, blur_ubo[2], composite_ubo;
+  gl::Buffer ssao_ubo, blur_ubo[2], composite_ubo, temporal_ubo;
   gl::Buffer module_ubo;  // modules only: shared_layout::ModuleParams of the module being drawn
   shared_layout::SsaoParams ssao_params{};
   shared_layout::BlurParams blur_params[2]{};
+  shared_layout::TemporalParams temporal_params{};
   const gl::Program* ssao_program = nullptr;
   std::string_view ssao_defines;  // the #defines ssao_program was compiled with (its variant)
   const gl::Program* present_program = nullptr;
@@ -47,7 +57,10 @@ class ViewTargets {
 
   // History: the AO of the last frame stays valid while view and projection do not change.
   glm::dmat4 ao_view{0.0}, ao_projection{0.0};
+  double ao_far = 0.0;
   bool have_ao = false, reused_ao = false;
+  unsigned ao_frame = 0;  // frames computed since the history began: the sample turn's sequence index
+  int still_frames = 0;   // of them, how many in a row with this view (the average's frames, capped)
   // Prepass::automatic: the raster time with and without the prepass, measured on the first frames.
   bool prepass_now = true;
   double raster_with = -1.0, raster_without = -1.0;

@@ -38,6 +38,11 @@ struct FrameSettings {
   Output output = Output::color;
   Prepass prepass = Prepass::automatic;
   bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
+  // Temporal accumulation: each frame turns its AO samples anew and averages them with the previous
+  // frames' AO found by reprojection; `history` frames at most (TEMPORAL_MOVING_FRAMES while the
+  // camera moves). With reuse_static_ao, a still camera stops computing AO once it has `history`.
+  bool temporal = true;
+  int history = 32;
   // Untextured materials draw with the G-buffer variant that fetches no texture. Off only to measure
   // what that saves (aobench's untextured-variant=off): they then sample a 1x1 white texture.
   bool untextured_variant = true;

@@ -1,0 +1,79 @@
+// Temporal accumulation: each frame's AO turns its samples by a new angle (ssao::advance_frame), so
+// the average over frames is an estimate with many times the samples. The previous frame's average
+// is found by reprojecting the pixel's surface point into the previous view (exact for static
+// geometry under a moving camera), read bilinearly from the texels whose depth and normal agree with
+// the point, and blended with the new AO with weight 1 / frames. Where no texel agrees (a
+// disocclusion, the screen's edge, a first frame) the history starts again from this frame.
+// Output: r = the average, g = depth / far (as ssao.comp writes it, for the blur and upsample),
+// b = the frames it averages; the world normal goes to a second image for the next frame's test.
+// The average is kept in 32-bit floats: in rgba16f a history of 64 frames stops moving once the new
+// frame's share, (AO - average) / 64, falls under half a step of the stored value (3e-4 near 0.6),
+// and the still camera's average came out up to 0.01 off the mean of its frames.
+#include "common.glsl"
+#include "shared_layout.glsl"
+
+layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
+
+layout(std140, binding = BINDING_TEMPORAL_PARAMS) uniform TemporalBlock { TemporalParams temporal; };
+uniform highp sampler2D u_current;         // this frame's AO: r = AO, g = depth / far (0 on background)
+uniform highp sampler2D u_normal;          // full resolution, view space
+uniform highp sampler2D u_history;         // the previous frame's output of this pass
+uniform highp sampler2D u_history_normal;  // xyz: world normal of each history texel
+layout(rgba32f, binding = 0) writeonly uniform highp image2D u_target;
+layout(rgba8_snorm, binding = 1) writeonly uniform highp image2D u_target_normal;
+
+void main() {
+  ivec2 ao_pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (ao_pixel.x >= temporal.size.x || ao_pixel.y >= temporal.size.y) return;
+  highp vec2 current = texelFetch(u_current, ao_pixel, 0).rg;
+  if (current.g <= 0.0) {  // background: nothing to remember
+    imageStore(u_target, ao_pixel, vec4(0.0));
+    imageStore(u_target_normal, ao_pixel, vec4(0.0));
+    return;
+  }
+  // The AO pixel shaded the first full-resolution pixel of its block (ssao.comp).
+  ivec2 pixel = ao_pixel << temporal.config.z;
+  highp float depth = current.g * temporal.depth.x;
+  highp vec2 ndc = (vec2(pixel) + 0.5) / vec2(temporal.size.zw) * 2.0 - 1.0;
+  highp vec3 position = vec3((ndc + temporal.unproject.zw) * depth * temporal.unproject.xy, -depth);
+  highp vec3 normal = normalize(mat3(temporal.view_to_world) * texelFetch(u_normal, pixel, 0).xyz);
+
+  highp float history = 0.0, frames = 0.0, weight_sum = 0.0;
+  if (temporal.config.x != 0) {
+    highp vec3 previous = (temporal.current_to_previous * vec4(position, 1.0)).xyz;
+    highp vec4 clip = temporal.previous_projection * vec4(previous, 1.0);
+    highp float expected = -previous.z;  // the point's linear depth in the previous view
+    if (clip.w > 0.0 && expected > 0.0) {
+      highp vec2 previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(temporal.size.zw);
+      // AO texel i holds full-resolution pixel (i << shift), whose centre is at (i << shift) + 0.5.
+      highp vec2 coordinate = (previous_pixel - 0.5) / float(1 << temporal.config.z);
+      ivec2 base = ivec2(floor(coordinate));
+      highp vec2 f = coordinate - vec2(base);
+      highp float tolerance = temporal.depth.z * expected;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          ivec2 texel = base + ivec2(dx, dy);
+          if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, temporal.size.xy))) continue;
+          highp vec4 past = texelFetch(u_history, texel, 0);
+          if (past.g <= 0.0) continue;  // background then
+          if (abs(past.g * temporal.depth.y - expected) > tolerance) continue;  // another surface then
+          if (dot(texelFetch(u_history_normal, texel, 0).xyz, normal) < temporal.depth.w) continue;
+          highp float w = (dx == 0 ? 1.0 - f.x : f.x) * (dy == 0 ? 1.0 - f.y : f.y);
+          history += w * past.r;
+          frames += w * past.b;
+          weight_sum += w;
+        }
+    }
+  }
+  highp float limit = float(temporal.config.w != 0 ? min(temporal.config.y, TEMPORAL_MOVING_FRAMES) : temporal.config.y);
+  highp float average = current.r;
+  highp float count = 1.0;
+  // A history that only a sliver of the footprint supports is as likely a neighbour's as this point's.
+  if (weight_sum > 0.25) {
+    history /= weight_sum;
+    count = min(floor(frames / weight_sum + 0.5) + 1.0, limit);
+    average = mix(history, current.r, 1.0 / count);
+  }
+  imageStore(u_target, ao_pixel, vec4(average, current.g, count, 0.0));
+  imageStore(u_target_normal, ao_pixel, vec4(normal, 0.0));
+}

@@ -70,6 +70,9 @@ void main() {
   vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
   float ambient = composite.light_direction.w;
   float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);
-  fragment = shaded(albedo * (ambient + (1.0 - ambient) * diffuse) * (1.0 - ao) * fade);
+  // --ao-strength darkens or lightens the shaded image only: the AO view and every read-back show the
+  // AO as computed, which is what accuracy is measured on.
+  float visibility = pow(max(1.0 - ao, 0.0), composite.shading.x);
+  fragment = shaded(albedo * (ambient + (1.0 - ambient) * diffuse) * visibility * fade);
 #endif
 }

@@ -71,6 +71,7 @@ struct CompositeParams {
   ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
                           // w: unused
   ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
+  vec4 shading;           // x: AO strength, the power on 1 - AO in the shaded image (1: as computed)
 };
 
 // Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by

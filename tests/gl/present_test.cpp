@@ -133,6 +133,37 @@ TEST_P(Present, TemporalRunsRepeatBitForBit) {
   EXPECT_EQ(run(false), bursts);
 }
 
+// --ao-strength powers 1 - AO in the shaded image only: 0 shows the image without AO, 2 darkens
+// every occluded pixel further, and the AO itself (what accuracy is measured on) stays as computed.
+TEST_P(Present, AoStrengthChangesTheShadedImageButNotTheAo) {
+  auto frame_with = [&](float strength, bool ao, std::vector<glm::vec2>* ao_out) {
+    render::FrameSettings settings = settings_for(96, 72);
+    settings.ao_strength = strength;
+    settings.ao = ao;
+    Harness h;
+    EXPECT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+    if (ao_out != nullptr) *ao_out = h.renderer.read_ao_final();
+    return h.renderer.read_color();
+  };
+  std::vector<glm::vec2> ao_one, ao_two;
+  const std::vector<uint8_t> one = frame_with(1.0f, true, &ao_one);
+  const std::vector<uint8_t> two = frame_with(2.0f, true, &ao_two);
+  EXPECT_EQ(frame_with(0.0f, true, nullptr), frame_with(1.0f, false, nullptr));
+  EXPECT_EQ(ao_one, ao_two);
+  size_t darker = 0, occluded = 0;
+  for (size_t i = 0; i < one.size(); i += 4) {
+    EXPECT_LE(two[i + 1], one[i + 1]) << i;
+    if (one[i + 1] < 40) continue;  // too dark to tell a step apart
+    const size_t pixel = i / 4;
+    const size_t x = pixel % 96, y = 71 - pixel / 96;  // AO rows are bottom-up
+    if (ao_one[y * 96 + x].x < 0.1f) continue;
+    ++occluded;
+    darker += two[i + 1] < one[i + 1] ? 1 : 0;
+  }
+  EXPECT_GT(occluded, 50u);
+  EXPECT_GT(darker, occluded * 9 / 10);
+}
+
 TEST_P(Present, FadeDarkensTheWholeImage) {
   render::FrameSettings settings = settings_for(64, 48);
   Harness h;

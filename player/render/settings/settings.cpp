@@ -90,6 +90,15 @@ const Row kRows[] = {
      [] { return names::choices<ssao::Pattern>(ssao::kPatternNames); },
      [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Pattern>(ssao::kPatternNames, v, s.ao_settings.pattern); },
      [](const FrameSettings& s) { return std::string(ssao::name(s.ao_settings.pattern)); }},
+    {{"ao-strength", "Power on 1 - AO in the shaded image (1: the AO as computed; the AO view is never changed)", "0..8"},
+     nullptr,
+     [](FrameSettings& s, std::string_view v) {
+       float value = 0.0f;
+       if (!parse_non_negative(v, value) || value > 8.0f) return false;
+       s.ao_strength = value;
+       return true;
+     },
+     [](const FrameSettings& s) { return float_text(s.ao_strength); }},
     {{"blur", "AO blur", ""},
      [] { return names::choices<ssao::Blur>(ssao::kBlurNames); },
      [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Blur>(ssao::kBlurNames, v, s.blur.mode); },

@@ -42,6 +42,9 @@ struct FrameSettings {
   // frames' AO found by reprojection; `history` frames at most (TEMPORAL_MOVING_FRAMES while the
   // camera moves). With reuse_static_ao, a still camera stops computing AO once it has `history`.
   bool temporal = true;
+  // The shaded image's visibility is (1 - AO)^ao_strength; the AO itself (the AO view, dumps,
+  // aobench) is never changed by it.
+  float ao_strength = 1.0f;
   int history = 32;
   // Untextured materials draw with the G-buffer variant that fetches no texture. Off only to measure
   // what that saves (aobench's untextured-variant=off): they then sample a 1x1 white texture.

@@ -114,3 +114,66 @@ TEST(Metrics, NoObjectPixelsGivesNaNAndMismatchedSizesThrow) {
 
 }  // namespace
 }  // namespace aoref
+
+namespace aoref {
+namespace {
+
+// A constant offset is bias, not noise; a checkerboard of +-d is all noise: a 5x5 box over it
+// averages to about 0 (exactly +-d/25 inside), so the noise is close to d. Background pixels
+// neither count nor enter the box.
+TEST(Metrics, NoiseIsTheHighFrequencyPartOfTheError) {
+  const Image reference = pattern();
+  const Image depth = depth_with_background();
+  Image offset = reference;
+  for (float& v : offset.values) v += 0.1f;
+  const Metrics smooth = compare(offset, reference, depth);
+  EXPECT_NEAR(smooth.bias, 0.1, 1e-6);
+  EXPECT_NEAR(smooth.noise, 0.0, 1e-6);
+  Image dithered = reference;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) dithered.at(static_cast<size_t>(y * kW + x)) += (x + y) % 2 == 0 ? 0.05f : -0.05f;
+  const Metrics noisy = compare(dithered, reference, depth);
+  EXPECT_NEAR(noisy.bias, 0.0, 2e-3);
+  EXPECT_NEAR(noisy.mae, 0.05, 1e-6);
+  EXPECT_GT(noisy.noise, 0.045);
+  EXPECT_LE(noisy.noise, 0.05 * 26.0 / 25.0 + 1e-6);
+}
+
+// A camera that moved one pixel to the right: every pixel of the new frame finds, by its world
+// position, the pixel one to the left in the old one; the strip that came into view has no match.
+TEST(Metrics, MatchingByReprojectionFindsTheSamePointInThePreviousFrame) {
+  constexpr int w = 16, h = 8;
+  // Positions on the plane z = -10 seen by an orthographic-like view-projection: x, y in [-1, 1).
+  auto positions = [&](double shift) {
+    Image p(w, h, 4);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = static_cast<size_t>(y * w + x);
+        p.at(i, 0) = static_cast<float>((x + 0.5) / w * 2.0 - 1.0 + shift);
+        p.at(i, 1) = static_cast<float>(1.0 - (y + 0.5) / h * 2.0);
+        p.at(i, 2) = -10.0f;
+        p.at(i, 3) = 1.0f;
+      }
+    return p;
+  };
+  const Image before = positions(0.0), now = positions(2.0 / w);  // one pixel's width further right
+  glm::dmat4 view_projection(1.0);
+  view_projection[3][2] = 10.0;  // z = -10 -> 0; w stays 1
+  const std::vector<int64_t> match = match_previous(now, before, view_projection, glm::dvec3(0.0, 0.0, 0.0));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y * w + x);
+      EXPECT_EQ(match[i], x + 1 < w ? static_cast<int64_t>(i + 1) : -1) << x << "," << y;
+    }
+  Image ao_before(w, h, 1), ao_now(w, h, 1);
+  for (size_t i = 0; i < ao_before.values.size(); ++i) ao_before.values[i] = static_cast<float>(i % w) * 0.01f;
+  for (size_t i = 0; i < ao_now.values.size(); ++i) ao_now.values[i] = static_cast<float>(i % w + 1) * 0.01f + 0.02f;
+  EXPECT_NEAR(mean_change(ao_now, ao_before, match), 0.02, 1e-6);
+  // A surface that was not there before (another depth) does not match.
+  Image occluded = before;
+  for (size_t i = 0; i < occluded.pixel_count(); ++i) occluded.at(i, 2) = -5.0f;
+  for (int64_t m : match_previous(now, occluded, view_projection, glm::dvec3(0.0))) EXPECT_EQ(m, -1);
+}
+
+}  // namespace
+}  // namespace aoref

@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <unistd.h>
 
@@ -46,7 +47,13 @@ struct Options {
   std::string platform = "auto";
   std::string csv = "out/aobench.csv";
   std::string chart = "out/aobench.png";
+  std::string noise_chart = "out/aobench-noise.png";
+  bool temporal = true;  // the accumulation columns (still camera and turntable)
 };
+
+// The turntable of the temporal columns: 10 degrees per second at 30 frames per second.
+constexpr double kTurntableDegreesPerFrame = 10.0 / 30.0;
+constexpr int kAccumulatedFrames[] = {1, 4, 16};
 
 // Converts a bottom-up (GL) image to the top-down layout of aoref images.
 aoref::Image top_down(const std::vector<float>& values, int width, int height, int channels) {
@@ -91,6 +98,12 @@ struct Row {
   double frame_ms = 0.0;  // every pass of the frame
   aoref::Metrics own, near_field;
   std::string reference;
+  // With temporal accumulation (the configuration with temporal=on, reuse-ao=off): MAE against the
+  // near-field reference after kAccumulatedFrames frames of a still camera and of a turntable that
+  // ends at this view; and the turntable's last step's change of AO at matched pixels, minus the
+  // reference's own change there (NaN when the columns are off).
+  double still_mae[3] = {}, turn_mae[3] = {};
+  double instability = 0.0;
 };
 
 double median(std::vector<double> values) {
@@ -116,7 +129,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"quick", "full", "ablation"}));
   cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")->check(CLI::IsMember(platform::names()))->capture_default_str();
   cli.add_option("-o,--csv", options.csv, "CSV output")->capture_default_str();
-  cli.add_option("--chart", options.chart, "PNG chart output")->capture_default_str();
+  cli.add_option("--chart", options.chart, "PNG chart output: time against MAE")->capture_default_str();
+  cli.add_option("--noise-chart", options.noise_chart, "PNG chart output: time against the error's high-frequency noise")
+      ->capture_default_str();
+  cli.add_flag("!--no-temporal", options.temporal,
+               "Leave out the temporal columns (error after 1, 4 and 16 accumulated frames, still and turntable; instability)");
   CLI11_PARSE(cli, argc, argv);
 
   int width = 0, height = 0;
@@ -178,7 +195,9 @@ int main(int argc, char** argv) {
   csv << "scene,view,config";
   for (const char* key : kCsvSettings) csv << ',' << key;
   csv << ","
-         "time_ms,raster_ms,frame_ms,reference,mae,rmse,ssim,edge_mae,mae_near_field,rmse_near_field,ssim_near_field\n";
+         "time_ms,raster_ms,frame_ms,reference,mae,rmse,ssim,edge_mae,mae_near_field,rmse_near_field,ssim_near_field,"
+         "bias_near_field,noise_near_field,mae_still_1,mae_still_4,mae_still_16,mae_turn_1,mae_turn_4,mae_turn_16,"
+         "instability\n";
   std::vector<Row> rows;
 
   for (const std::string& scene_spec : options.scenes) {
@@ -205,6 +224,10 @@ int main(int argc, char** argv) {
       framing.elevation_deg = 25.0;
       framing.distance = options.distance;
       const scene::Camera camera = scene::frame(scene.bounds, framing, width, height);
+      // The turntable's previous frame, for the instability column: its own surface and reference.
+      scene::Framing previous_framing = framing;
+      previous_framing.azimuth_deg -= kTurntableDegreesPerFrame;
+      const scene::Camera previous_camera = scene::frame(scene.bounds, previous_framing, width, height);
       renderer.render(camera);
       const render::WorldSurface surface = render::read_world_surface(renderer.targets(), render::view_of(camera));
       aoref::View view;
@@ -227,6 +250,23 @@ int main(int argc, char** argv) {
       if (!aoref::compute_reference(rays, view, reference_settings, sphere, error)) {
         std::cerr << "error: " << error << "\n";
         return 1;
+      }
+      aoref::ReferenceResult previous_near_field;
+      aoref::Image previous_positions, positions = view.position;
+      if (options.temporal) {
+        renderer.render(previous_camera);
+        const render::WorldSurface previous = render::read_world_surface(renderer.targets(), render::view_of(previous_camera));
+        aoref::View previous_view = view;
+        previous_view.eye = previous_camera.eye;
+        previous_view.position = top_down(previous.position, width, height, 4);
+        previous_view.normal = top_down(previous.normal, width, height, 4);
+        previous_positions = previous_view.position;
+        reference_settings.reference = aoref::Reference::near_field;
+        std::cout << "  tracing the turntable's previous frame\n";
+        if (!aoref::compute_reference(rays, previous_view, reference_settings, previous_near_field, error)) {
+          std::cerr << "error: " << error << "\n";
+          return 1;
+        }
       }
       std::cout << "  reference noise: near-field mean standard error " << near_field.mean_standard_error << " (max "
                 << near_field.max_standard_error << "), sphere " << sphere.mean_standard_error << " (max "
@@ -265,10 +305,51 @@ int main(int argc, char** argv) {
         row.own = aoref::compare(ao_image(estimate, width, height, false),
                                  is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
         row.near_field = aoref::compare(ao_image(estimate, width, height, is_sphere), near_field.ao, depth);
+        for (int n = 0; n < 3; ++n) row.still_mae[n] = row.turn_mae[n] = std::numeric_limits<double>::quiet_NaN();
+        row.instability = std::numeric_limits<double>::quiet_NaN();
+        if (options.temporal) {
+          render::FrameSettings accumulating = config.settings;
+          accumulating.temporal = true;
+          accumulating.reuse_static_ao = false;
+          auto mae_now = [&] {
+            return aoref::compare(ao_image(renderer.read_ao_final(), width, height, is_sphere), near_field.ao, depth).mae;
+          };
+          for (int n = 0; n < 3; ++n) {
+            const int frames = kAccumulatedFrames[n];
+            // Still: the same camera N times. Turntable: N frames that end at this view.
+            for (bool turning : {false, true}) {
+              if (!renderer.configure(accumulating, error)) {
+                std::cerr << "error: " << config.name << ": " << error << "\n";
+                return 1;
+              }
+              std::vector<glm::vec2> before;
+              for (int frame = 0; frame < frames; ++frame) {
+                scene::Framing at = framing;
+                if (turning) at.azimuth_deg -= kTurntableDegreesPerFrame * (frames - 1 - frame);
+                if (turning && frame == frames - 1 && frames > 1) before = renderer.read_ao_final();
+                renderer.render(scene::frame(scene.bounds, at, width, height));
+              }
+              (turning ? row.turn_mae : row.still_mae)[n] = mae_now();
+              if (turning && frames == kAccumulatedFrames[2]) {
+                const glm::dmat4 previous_view_projection = previous_camera.projection() * previous_camera.view();
+                const std::vector<int64_t> match =
+                    aoref::match_previous(positions, previous_positions, previous_view_projection, previous_camera.eye);
+                const aoref::Image estimate_now = ao_image(renderer.read_ao_final(), width, height, is_sphere);
+                const aoref::Image estimate_before = ao_image(before, width, height, is_sphere);
+                row.instability = aoref::mean_change(estimate_now, estimate_before, match) -
+                                  aoref::mean_change(near_field.ao, previous_near_field.ao, match);
+              }
+            }
+          }
+        }
         csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"";
         for (const char* key : kCsvSettings) csv << ',' << render::setting_value(config.settings, key);
         csv << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
-            << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << "\n";
+            << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << ','
+            << row.near_field.bias << ',' << row.near_field.noise;
+        for (double mae : row.still_mae) csv << ',' << mae;
+        for (double mae : row.turn_mae) csv << ',' << mae;
+        csv << ',' << row.instability << "\n";
         rows.push_back(row);
         progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));
       }
@@ -279,13 +360,19 @@ int main(int argc, char** argv) {
   // Aggregate each configuration over scenes and views: mean time, mean error against the
   // near-field reference (the one every estimator can be judged by).
   std::map<const aobench::Config*, std::pair<double, double>> totals;
-  std::map<const aobench::Config*, double> own_totals, frame_totals;
+  std::map<const aobench::Config*, double> own_totals, frame_totals, noise_totals, bias_totals, still_totals, turn_totals,
+      instability_totals;
   std::map<const aobench::Config*, int> counts;
   for (const Row& row : rows) {
     totals[row.config].first += row.time_ms;
     totals[row.config].second += row.near_field.mae;
     own_totals[row.config] += row.own.mae;
     frame_totals[row.config] += row.frame_ms;
+    noise_totals[row.config] += row.near_field.noise;
+    bias_totals[row.config] += row.near_field.bias;
+    still_totals[row.config] += row.still_mae[2];
+    turn_totals[row.config] += row.turn_mae[2];
+    instability_totals[row.config] += row.instability;
     ++counts[row.config];
   }
   std::vector<aobench::ChartPoint> points;
@@ -301,19 +388,34 @@ int main(int argc, char** argv) {
   std::cout << "\nmean over " << options.scenes.size() * static_cast<size_t>(options.views)
             << " scene views (error: MAE against the near-field reference; own: against the estimator's own reference)\n";
   std::cout << std::left << std::setw(12) << "AO ms" << std::setw(12) << "frame ms" << std::setw(12) << "MAE" << std::setw(12)
-            << "own MAE" << "configuration\n";
+            << "own MAE" << std::setw(12) << "bias" << std::setw(12) << "noise" << std::setw(12) << "MAE still16"
+            << std::setw(12) << "MAE turn16" << std::setw(12) << "instability" << "configuration\n";
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].on_front && points[i].mark.empty() && configs.size() > 40) continue;
     const int n = std::max(counts[order[i]], 1);
     std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12)
               << frame_totals[order[i]] / n << std::setw(12) << points[i].error
-              << std::setw(12) << own_totals[order[i]] / n << order[i]->name
+              << std::setw(12) << own_totals[order[i]] / n << std::setw(12) << bias_totals[order[i]] / n << std::setw(12)
+              << noise_totals[order[i]] / n << std::setw(12) << still_totals[order[i]] / n << std::setw(12)
+              << turn_totals[order[i]] / n << std::setw(12) << instability_totals[order[i]] / n << order[i]->name
               << (points[i].on_front ? "  [front]" : "") << (points[i].mark.empty() ? "" : "  <- " + points[i].mark) << "\n";
   }
   if (!aobench::write_chart(options.chart, points, "aobench " + options.size, "MAE vs near-field reference", error)) {
     std::cerr << "error: " << error << "\n";
     return 1;
   }
-  std::cout << "wrote " << options.csv << " and " << options.chart << "\n";
+  // The same configurations over time and the error's high-frequency noise, with that front.
+  std::vector<aobench::ChartPoint> noise_points = points;
+  for (size_t i = 0; i < noise_points.size(); ++i) {
+    noise_points[i].error = noise_totals[order[i]] / std::max(counts[order[i]], 1);
+    noise_points[i].on_front = false;
+  }
+  for (size_t i : aobench::pareto_front(noise_points)) noise_points[i].on_front = true;
+  if (!aobench::write_chart(options.noise_chart, noise_points, "aobench " + options.size,
+                            "high-frequency noise of the error (|e - 5x5 box(e)|)", error)) {
+    std::cerr << "error: " << error << "\n";
+    return 1;
+  }
+  std::cout << "wrote " << options.csv << ", " << options.chart << " and " << options.noise_chart << "\n";
   return 0;
 }

@@ -1,5 +1,6 @@
 #include "aoref/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -53,6 +54,35 @@ double masked_ssim(const Image& x, const Image& y, const std::vector<uint8_t>& o
   return count ? total / static_cast<double>(count) : std::numeric_limits<double>::quiet_NaN();
 }
 
+// Mean |e - box(e)| over object pixels, box over the object pixels of a (2r+1)^2 window.
+double high_frequency(const std::vector<double>& error, const std::vector<uint8_t>& object, int w, int h, int radius) {
+  // Summed-area tables of the error and of the object count make every window O(1).
+  const auto at = [w](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(w + 1) + static_cast<size_t>(x); };
+  std::vector<double> sum(static_cast<size_t>(w + 1) * static_cast<size_t>(h + 1), 0.0);
+  std::vector<double> count(sum.size(), 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      const double e = object[i] ? error[i] : 0.0;
+      sum[at(x + 1, y + 1)] = e + sum[at(x, y + 1)] + sum[at(x + 1, y)] - sum[at(x, y)];
+      count[at(x + 1, y + 1)] = (object[i] ? 1.0 : 0.0) + count[at(x, y + 1)] + count[at(x + 1, y)] - count[at(x, y)];
+    }
+  double total = 0.0;
+  size_t n = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      if (!object[i]) continue;
+      const int x0 = std::max(0, x - radius), x1 = std::min(w, x + radius + 1);
+      const int y0 = std::max(0, y - radius), y1 = std::min(h, y + radius + 1);
+      const double s = sum[at(x1, y1)] - sum[at(x0, y1)] - sum[at(x1, y0)] + sum[at(x0, y0)];
+      const double c = count[at(x1, y1)] - count[at(x0, y1)] - count[at(x1, y0)] + count[at(x0, y0)];
+      total += std::abs(error[i] - s / c);
+      ++n;
+    }
+  return n ? total / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 std::vector<uint8_t> edge_mask(const Image& depth, const MetricsSettings& settings) {
@@ -101,9 +131,11 @@ Metrics compare(const Image& estimate, const Image& reference, const Image& dept
 
   Metrics m;
   double abs_sum = 0.0, square_sum = 0.0, signed_sum = 0.0, edge_sum = 0.0;
+  std::vector<double> error(object.size(), 0.0);
   for (size_t i = 0; i < object.size(); ++i) {
     if (!object[i]) continue;
     const double difference = static_cast<double>(estimate.at(i)) - reference.at(i);
+    error[i] = difference;
     abs_sum += std::abs(difference);
     square_sum += difference * difference;
     signed_sum += difference;
@@ -120,7 +152,42 @@ Metrics compare(const Image& estimate, const Image& reference, const Image& dept
   m.bias = m.pixels ? signed_sum / n : nan;
   m.edge_mae = m.edge_pixels ? edge_sum / static_cast<double>(m.edge_pixels) : nan;
   m.ssim = masked_ssim(estimate, reference, object, settings);
+  m.noise = high_frequency(error, object, estimate.width, estimate.height, std::max(0, settings.noise_radius));
   return m;
+}
+
+std::vector<int64_t> match_previous(const Image& position_now, const Image& position_before,
+                                    const glm::dmat4& view_projection_before, const glm::dvec3& eye_before,
+                                    double tolerance) {
+  if (!position_now.same_size(position_before) || position_now.channels < 4 || position_before.channels < 4)
+    throw std::invalid_argument("aoref::match_previous: expected two position images (4 channels) of one size, found " +
+                                size_text(position_now) + " and " + size_text(position_before));
+  const int w = position_now.width, h = position_now.height;
+  std::vector<int64_t> match(position_now.pixel_count(), -1);
+  for (size_t i = 0; i < match.size(); ++i) {
+    if (!(position_now.at(i, 3) > 0.0f)) continue;
+    const glm::dvec3 world(position_now.at(i, 0), position_now.at(i, 1), position_now.at(i, 2));
+    const glm::dvec4 clip = view_projection_before * glm::dvec4(world, 1.0);
+    if (!(clip.w > 0.0)) continue;
+    const double u = (clip.x / clip.w * 0.5 + 0.5) * w, v = (0.5 - clip.y / clip.w * 0.5) * h;  // v: rows top-down
+    if (!(u >= 0.0 && u < w && v >= 0.0 && v < h)) continue;
+    const size_t j = static_cast<size_t>(std::floor(v)) * static_cast<size_t>(w) + static_cast<size_t>(std::floor(u));
+    if (!(position_before.at(j, 3) > 0.0f)) continue;
+    const glm::dvec3 seen(position_before.at(j, 0), position_before.at(j, 1), position_before.at(j, 2));
+    if (glm::length(seen - world) <= tolerance * glm::length(world - eye_before)) match[i] = static_cast<int64_t>(j);
+  }
+  return match;
+}
+
+double mean_change(const Image& now, const Image& before, const std::vector<int64_t>& match) {
+  double total = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < match.size(); ++i) {
+    if (match[i] < 0) continue;
+    total += std::abs(static_cast<double>(now.at(i)) - before.at(static_cast<size_t>(match[i])));
+    ++n;
+  }
+  return n ? total / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace aoref

@@ -1,7 +1,9 @@
 // One separable blur pass; the direction is a parameter so one shader serves both passes. Each
 // work group blurs a run of BLUR_GROUP_SIZE pixels along the direction and first copies the run and
 // its apron into shared memory, so every texel is fetched about once rather than 2 * radius + 1 times.
-// BILATERAL weights each tap by depth similarity so AO does not bleed across depth edges.
+// BILATERAL weights each tap by depth similarity so AO does not bleed across depth edges. DENOISE
+// (with BILATERAL) also weights it by how closely its normal agrees with the centre's, so AO does
+// not bleed across creases either, where depth runs on smoothly.
 #include "common.glsl"
 #include "shared_layout.glsl"
 
@@ -9,6 +11,10 @@ layout(local_size_x = BLUR_GROUP_SIZE, local_size_y = 1) in;
 
 layout(std140, binding = BINDING_BLUR_PARAMS) uniform BlurBlock { BlurParams blur; };
 uniform highp sampler2D u_source;  // r: AO, g: depth / far (0 for background)
+#ifdef DENOISE
+uniform highp sampler2D u_normal;  // full resolution, view space
+shared mediump vec3 run_normal[BLUR_GROUP_SIZE + 2 * BLUR_MAX_RADIUS];
+#endif
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
 
 shared highp vec2 run[BLUR_GROUP_SIZE + 2 * BLUR_MAX_RADIUS];
@@ -26,6 +32,9 @@ void main() {
     int along = clamp(first + i, 0, length_along - 1);
     ivec2 texel = vertical ? ivec2(line, along) : ivec2(along, line);
     run[i] = texelFetch(u_source, texel, 0).rg;
+#ifdef DENOISE
+    run_normal[i] = texelFetch(u_normal, texel << blur.source.x, 0).xyz;
+#endif
   }
   barrier();
   int along = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE + local;
@@ -47,6 +56,9 @@ void main() {
       float tolerance = blur.bilateral.x * centre.y;
       float difference = (value.y - centre.y) / tolerance;
       weight *= value.y > 0.0 ? exp(-difference * difference) : 0.0;
+#endif
+#ifdef DENOISE
+      weight *= pow(max(dot(run_normal[centre_index], run_normal[centre_index + side * i]), 0.0), blur.bilateral.y);
 #endif
       sum += value.x * weight;
       total += weight;

@@ -56,7 +56,6 @@ Comparison compare(const std::vector<glm::vec2>& gpu, const std::vector<glm::vec
 void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool mediump_reference = false) {
   const render::FrameSettings& settings = h.renderer.settings();
   const ssao::Estimator estimator = settings.ao_settings.estimator;
-  const bool bilateral = settings.blur.mode == ssao::Blur::bilateral;
   const auto depth = h.renderer.read_linear_depth();
   const auto chain = ssao::build_depth_chain(depth, settings.width, settings.height);
   const auto cpu_raw = ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.ssao_params(),
@@ -75,8 +74,9 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
   auto low = gpu_raw;
   if (settings.blur.mode != ssao::Blur::off) {
     // The blur, fed the GPU's own raw AO, must match to within half-float rounding of the sums.
-    const auto cpu_h = ssao::reference_blur(gpu_raw, h.renderer.blur_params(0), bilateral);
-    low = ssao::reference_blur(cpu_h, h.renderer.blur_params(1), bilateral);
+    const auto normals = h.renderer.read_view_normals();
+    const auto cpu_h = ssao::reference_blur(gpu_raw, h.renderer.blur_params(0), settings.blur.mode, normals, settings.width);
+    low = ssao::reference_blur(cpu_h, h.renderer.blur_params(1), settings.blur.mode, normals, settings.width);
     const Comparison blurred = compare(h.renderer.read_ao_blurred(), low, 2e-3f);
     EXPECT_EQ(blurred.off_by_more, 0u) << what << ", max difference " << blurred.max_difference;
     low = h.renderer.read_ao_blurred();
@@ -91,7 +91,7 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
 TEST_P(Pipeline, GpuSsaoAndBlurEqualTheCpuReference) {
   for (const char* scene : {"builtin:demo", "builtin:spheres"}) {
     for (ssao::Pattern pattern : ssao::kPatterns) {
-      for (ssao::Blur blur : {ssao::Blur::gaussian, ssao::Blur::bilateral}) {
+      for (ssao::Blur blur : {ssao::Blur::gaussian, ssao::Blur::bilateral, ssao::Blur::denoise}) {
         render::FrameSettings settings = small_settings();
         settings.ao_settings.pattern = pattern;
         settings.blur.mode = blur;
@@ -453,7 +453,7 @@ TEST_P(Pipeline, CornerAndOpenFacesGetEachEstimatorsAnalyticValue) {
 TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
   for (bool prepass : {true, false})
     for (bool ao : {true, false})
-      for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral})
+      for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral, ssao::Blur::denoise})
         for (render::Output view : {render::Output::color, render::Output::ao, render::Output::normal, render::Output::depth}) {
           render::FrameSettings settings = small_settings();
           settings.width = 48;

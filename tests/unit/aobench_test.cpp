@@ -221,7 +221,7 @@ TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
       {"radii", {"1", "5"}, {"0", "6", "2.0"}, "1..5"},
       {"radius", {"0", "2.5", "1e-3"}, {"-0.001", "-1", "inf", "nan", "1e", "x"}, "a number >= 0"},
       {"pattern", {"random", "jittered", "latin", "poisson"}, {"halton"}, "random|jittered|latin|poisson"},
-      {"blur", {"gaussian", "bilateral", "off"}, {"box", "on"}, "gaussian|bilateral|off"},
+      {"blur", {"gaussian", "bilateral", "denoise", "off"}, {"box", "on"}, "gaussian|bilateral|denoise|off"},
       {"resolution", {"full", "half"}, {"quarter", "on"}, "full|half"},
       {"depth-chain", {"on", "off"}, {"true"}, "on|off"},
       {"skip-radii", {"on", "off"}, {"no"}, "on|off"},

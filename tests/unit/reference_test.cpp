@@ -293,18 +293,46 @@ TEST(Reference, GaussianBlurPreservesAConstantAndBilateralStopsAtDepthEdges) {
   ssao::BlurSettings blur;
   std::vector<ssao::AoTexel> constant(w * h, ssao::AoTexel(0.25f, 0.5f));
   const auto params = ssao::make_blur_params(blur, 0, w, h);
-  for (const auto& texel : ssao::reference_blur(constant, params, false)) EXPECT_NEAR(texel.x, 0.25f, 1e-3);
+  for (const auto& texel : ssao::reference_blur(constant, params, ssao::Blur::gaussian)) EXPECT_NEAR(texel.x, 0.25f, 1e-3);
   // AO 1 at depth 0.2 on the left, AO 0 at depth 0.6 on the right.
   std::vector<ssao::AoTexel> edge(w * h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) edge[static_cast<size_t>(y * w + x)] = x < w / 2 ? ssao::AoTexel(1.0f, 0.2f) : ssao::AoTexel(0.0f, 0.6f);
-  const auto gaussian = ssao::reference_blur(edge, params, false);
-  const auto bilateral = ssao::reference_blur(edge, params, true);
+  const auto gaussian = ssao::reference_blur(edge, params, ssao::Blur::gaussian);
+  const auto bilateral = ssao::reference_blur(edge, params, ssao::Blur::bilateral);
   const size_t left = static_cast<size_t>(4 * w + w / 2 - 1), right = left + 1;
   EXPECT_LT(gaussian[left].x, 0.9f);   // the plain Gaussian bleeds across the edge
   EXPECT_GT(gaussian[right].x, 0.1f);
   EXPECT_NEAR(bilateral[left].x, 1.0f, 1e-3);  // the bilateral one does not
   EXPECT_NEAR(bilateral[right].x, 0.0f, 1e-3);
+}
+
+// A crease: one depth throughout, the normal turning by 90 degrees at the middle (the inside corner
+// of two walls). Depth cannot see it, so the bilateral blur bleeds across; the denoiser's normal
+// weight keeps each side's AO, at half resolution reading the normal of each texel's full pixel.
+TEST(Reference, DenoiseAlsoStopsAtCreasesWhereDepthRunsOn) {
+  constexpr int w = 32, h = 8;
+  ssao::BlurSettings blur;
+  for (int shift : {0, 1}) {
+    const auto params = ssao::make_blur_params(blur, 0, w, h, shift);
+    std::vector<ssao::AoTexel> crease(w * h);
+    const int full_w = w << shift, full_h = h << shift;
+    std::vector<glm::vec3> normals(static_cast<size_t>(full_w * full_h));
+    for (int y = 0; y < full_h; ++y)
+      for (int x = 0; x < full_w; ++x)
+        normals[static_cast<size_t>(y * full_w + x)] = x < full_w / 2 ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) crease[static_cast<size_t>(y * w + x)] = ssao::AoTexel(x < w / 2 ? 1.0f : 0.0f, 0.4f);
+    const auto bilateral = ssao::reference_blur(crease, params, ssao::Blur::bilateral);
+    const auto denoised = ssao::reference_blur(crease, params, ssao::Blur::denoise, normals, full_w);
+    const size_t left = static_cast<size_t>(4 * w + w / 2 - 1), right = left + 1;
+    EXPECT_LT(bilateral[left].x, 0.9f) << "shift " << shift;
+    EXPECT_NEAR(denoised[left].x, 1.0f, 1e-3) << "shift " << shift;
+    EXPECT_NEAR(denoised[right].x, 0.0f, 1e-3) << "shift " << shift;
+    // On one face it is the bilateral blur.
+    const size_t inside = static_cast<size_t>(4 * w + 4);
+    EXPECT_NEAR(denoised[inside].x, bilateral[inside].x, 1e-6) << "shift " << shift;
+  }
 }
 
 }  // namespace

@@ -357,7 +357,7 @@ TEST(Blur, ReferenceBlurOfAnImpulseIsTheNormalisedGaussian) {
     const glm::ivec2 centre(width / 2, height / 2);
     image[static_cast<size_t>(centre.y * width + centre.x)].x = 1.0f;
     for (bool bilateral : {false, true}) {  // equal depths: the bilateral blur is the Gaussian one
-      const auto out = ssao::reference_blur(image, params, bilateral);
+      const auto out = ssao::reference_blur(image, params, bilateral ? ssao::Blur::bilateral : ssao::Blur::gaussian);
       const auto expected = normalised_gaussian(settings.sigma, settings.radius);
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {

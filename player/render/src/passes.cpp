@@ -254,8 +254,11 @@ bool ao_passes(const Frame& frame) {
   if (temporal) accumulate(frame, !still);
 
   if (settings.blur.mode != ssao::Blur::off) {
-    const gl::Program& blur = settings.blur.mode == ssao::Blur::bilateral ? frame.programs.blur_bilateral : frame.programs.blur_gaussian;
+    const gl::Program& blur = settings.blur.mode == ssao::Blur::denoise     ? frame.programs.blur_denoise
+                              : settings.blur.mode == ssao::Blur::bilateral ? frame.programs.blur_bilateral
+                                                                            : frame.programs.blur_gaussian;
     gl::api.UseProgram(blur.id());
+    bind_texture(1, targets.normal);  // read by denoise only
     const gl::Texture* sources[2] = {&targets.ao_unblurred(), &targets.ao_temp};
     const gl::Texture* destinations[2] = {&targets.ao_temp, &targets.ao_blurred};
     for (int direction = 0; direction < 2; ++direction) {

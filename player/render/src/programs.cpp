@@ -37,6 +37,7 @@ bool Programs::build(const gl::Caps&, std::string& error) {
       !build_raster(depth_only, "depth_only.frag", "", error) || !build_compute(depth_chain, "depth_chain.comp", "", error) ||
       !build_compute(upsample, "upsample.comp", "", error) || !build_compute(blur_gaussian, "blur.comp", "", error) ||
       !build_compute(blur_bilateral, "blur.comp", "#define BILATERAL 1\n", error) ||
+      !build_compute(blur_denoise, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", error) ||
       !build_compute(temporal, "temporal.comp", "", error) || !present(Output::color, true, error) || !present(Output::color, false, error))
     return false;
   depth_chain_source_level = gl::uniform(depth_chain, "u_source_level");
@@ -44,6 +45,7 @@ bool Programs::build(const gl::Caps&, std::string& error) {
   detail::assign_units(upsample, {"u_ao", "u_linear_depth"});
   detail::assign_units(blur_gaussian, {"u_source"});
   detail::assign_units(blur_bilateral, {"u_source"});
+  detail::assign_units(blur_denoise, {"u_source", "u_normal"});
   detail::assign_units(temporal, {"u_current", "u_normal", "u_history", "u_history_normal"});
   gl::api.UseProgram(0);
   empty_vertex_array = gl::make_vertex_array();

@@ -206,8 +206,13 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
   return out;
 }
 
-std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params,
-                                    bool bilateral) {
+std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params, Blur mode,
+                                    const std::vector<glm::vec3>& view_normals, int full_width) {
+  const bool bilateral = mode == Blur::bilateral || mode == Blur::denoise;
+  const bool denoise = mode == Blur::denoise;
+  const auto normal_at = [&](glm::ivec2 texel) {
+    return view_normals[index(texel * (1 << params.source.x), full_width)];
+  };
   const int width = params.config.z, height = params.config.w;
   const glm::ivec2 step = params.config.y == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
   std::vector<AoTexel> out(source.size());
@@ -232,6 +237,8 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
             const float difference = (value.y - centre.y) / tolerance;
             weight *= value.y > 0.0f ? std::exp(-difference * difference) : 0.0f;
           }
+          if (denoise)
+            weight *= std::pow(std::max(glm::dot(normal_at(pixel), normal_at(tap)), 0.0f), params.bilateral.y);
           sum += value.x * weight;
           total += weight;
         }

@@ -46,7 +46,7 @@ class Programs {
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs
-  gl::Program depth_chain, blur_gaussian, blur_bilateral, upsample, temporal;
+  gl::Program depth_chain, blur_gaussian, blur_bilateral, blur_denoise, upsample, temporal;
   GLint depth_chain_source_level = -1;
   // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not.
   // The shaded image's two are built by build(); the debug outputs' on first use.

@@ -37,8 +37,10 @@ struct AoSettings {
   bool skip_background = true;
 };
 
-enum class Blur { off, gaussian, bilateral };
-inline constexpr names::Named<Blur> kBlurNames[] = {{Blur::gaussian, "gaussian"}, {Blur::bilateral, "bilateral"}, {Blur::off, "off"}};
+// denoise: bilateral in depth and also in normals (edge-aware), so it keeps creases as well as silhouettes.
+enum class Blur { off, gaussian, bilateral, denoise };
+inline constexpr names::Named<Blur> kBlurNames[] = {
+    {Blur::gaussian, "gaussian"}, {Blur::bilateral, "bilateral"}, {Blur::denoise, "denoise"}, {Blur::off, "off"}};
 std::string_view name(Blur blur);
 std::optional<Blur> parse_blur(std::string_view text);
 
@@ -46,7 +48,8 @@ struct BlurSettings {
   Blur mode = Blur::off;
   int radius = 4;                     // taps each side, 1..BLUR_MAX_RADIUS
   float sigma = 2.0f;                 // Gaussian sigma in pixels
-  float depth_tolerance = 0.05f;      // bilateral: depth difference, relative to depth, that halves trust
+  float depth_tolerance = 0.05f;      // bilateral, denoise: depth difference, relative to depth, that halves trust
+  float normal_power = 8.0f;          // denoise: a tap's weight times cos(angle between normals)^power
 };
 
 // The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
@@ -72,7 +75,8 @@ void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings
 
 // Levels of the depth chain for a full-resolution image (level 0 included).
 int depth_chain_levels(int width, int height);
-// direction 0: horizontal, 1: vertical.
-shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height);
+// direction 0: horizontal, 1: vertical; width and height are the AO resolution's, `shift` its
+// factor from the full resolution (0 or 1).
+shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height, int shift = 0);
 
 }  // namespace ssao

@@ -3,6 +3,7 @@
 // upsample.comp, step for step, in 32-bit floats, rounding to half floats where the GPU stores
 // rgba16f. Tests compare the GPU with it.
 #include "gles_shaders/shared_layout.h"
+#include "ssao/params.h"
 #include "ssao/sampling.h"
 
 #include <vector>
@@ -27,8 +28,10 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
                                     const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump = false);
-std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params,
-                                    bool bilateral);
+// `mode` gaussian, bilateral or denoise; denoise reads `view_normals` (full resolution, as for
+// reference_ssao) at each AO texel's full-resolution pixel.
+std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params, Blur mode,
+                                    const std::vector<glm::vec3>& view_normals = {}, int full_width = 0);
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
                                         const shared_layout::UpsampleParams& params);
 

@@ -103,6 +103,7 @@ struct Row {
   // ends at this view; and the turntable's last step's change of AO at matched pixels, minus the
   // reference's own change there (NaN when the columns are off).
   double still_mae[3] = {}, turn_mae[3] = {};
+  double still_noise = 0.0, turn_noise = 0.0;  // the error's high-frequency noise after 16 frames
   double instability = 0.0;
 };
 
@@ -197,7 +198,7 @@ int main(int argc, char** argv) {
   csv << ","
          "time_ms,raster_ms,frame_ms,reference,mae,rmse,ssim,edge_mae,mae_near_field,rmse_near_field,ssim_near_field,"
          "bias_near_field,noise_near_field,mae_still_1,mae_still_4,mae_still_16,mae_turn_1,mae_turn_4,mae_turn_16,"
-         "instability\n";
+         "noise_still_16,noise_turn_16,instability\n";
   std::vector<Row> rows;
 
   for (const std::string& scene_spec : options.scenes) {
@@ -306,13 +307,14 @@ int main(int argc, char** argv) {
                                  is_sphere ? merge_radii(sphere, config.settings.ao_settings.radii) : near_field.ao, depth);
         row.near_field = aoref::compare(ao_image(estimate, width, height, is_sphere), near_field.ao, depth);
         for (int n = 0; n < 3; ++n) row.still_mae[n] = row.turn_mae[n] = std::numeric_limits<double>::quiet_NaN();
+        row.still_noise = row.turn_noise = std::numeric_limits<double>::quiet_NaN();
         row.instability = std::numeric_limits<double>::quiet_NaN();
         if (options.temporal) {
           render::FrameSettings accumulating = config.settings;
           accumulating.temporal = true;
           accumulating.reuse_static_ao = false;
-          auto mae_now = [&] {
-            return aoref::compare(ao_image(renderer.read_ao_final(), width, height, is_sphere), near_field.ao, depth).mae;
+          auto metrics_now = [&] {
+            return aoref::compare(ao_image(renderer.read_ao_final(), width, height, is_sphere), near_field.ao, depth);
           };
           for (int n = 0; n < 3; ++n) {
             const int frames = kAccumulatedFrames[n];
@@ -329,7 +331,9 @@ int main(int argc, char** argv) {
                 if (turning && frame == frames - 1 && frames > 1) before = renderer.read_ao_final();
                 renderer.render(scene::frame(scene.bounds, at, width, height));
               }
-              (turning ? row.turn_mae : row.still_mae)[n] = mae_now();
+              const aoref::Metrics accumulated = metrics_now();
+              (turning ? row.turn_mae : row.still_mae)[n] = accumulated.mae;
+              if (frames == kAccumulatedFrames[2]) (turning ? row.turn_noise : row.still_noise) = accumulated.noise;
               if (turning && frames == kAccumulatedFrames[2]) {
                 const glm::dmat4 previous_view_projection = previous_camera.projection() * previous_camera.view();
                 const std::vector<int64_t> match =
@@ -349,7 +353,7 @@ int main(int argc, char** argv) {
             << row.near_field.bias << ',' << row.near_field.noise;
         for (double mae : row.still_mae) csv << ',' << mae;
         for (double mae : row.turn_mae) csv << ',' << mae;
-        csv << ',' << row.instability << "\n";
+        csv << ',' << row.still_noise << ',' << row.turn_noise << ',' << row.instability << "\n";
         rows.push_back(row);
         progress_bar("configurations", static_cast<int>(c + 1), static_cast<int>(configs.size()));
       }
@@ -361,7 +365,7 @@ int main(int argc, char** argv) {
   // near-field reference (the one every estimator can be judged by).
   std::map<const aobench::Config*, std::pair<double, double>> totals;
   std::map<const aobench::Config*, double> own_totals, frame_totals, noise_totals, bias_totals, still_totals, turn_totals,
-      instability_totals;
+      instability_totals, still_noise_totals;
   std::map<const aobench::Config*, int> counts;
   for (const Row& row : rows) {
     totals[row.config].first += row.time_ms;
@@ -371,6 +375,7 @@ int main(int argc, char** argv) {
     noise_totals[row.config] += row.near_field.noise;
     bias_totals[row.config] += row.near_field.bias;
     still_totals[row.config] += row.still_mae[2];
+    still_noise_totals[row.config] += row.still_noise;
     turn_totals[row.config] += row.turn_mae[2];
     instability_totals[row.config] += row.instability;
     ++counts[row.config];
@@ -388,7 +393,7 @@ int main(int argc, char** argv) {
   std::cout << "\nmean over " << options.scenes.size() * static_cast<size_t>(options.views)
             << " scene views (error: MAE against the near-field reference; own: against the estimator's own reference)\n";
   std::cout << std::left << std::setw(12) << "AO ms" << std::setw(12) << "frame ms" << std::setw(12) << "MAE" << std::setw(12)
-            << "own MAE" << std::setw(12) << "bias" << std::setw(12) << "noise" << std::setw(12) << "MAE still16"
+            << "own MAE" << std::setw(12) << "bias" << std::setw(12) << "noise" << std::setw(12) << "MAE still16" << std::setw(12) << "noise st16"
             << std::setw(12) << "MAE turn16" << std::setw(12) << "instability" << "configuration\n";
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].on_front && points[i].mark.empty() && configs.size() > 40) continue;
@@ -396,7 +401,7 @@ int main(int argc, char** argv) {
     std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12)
               << frame_totals[order[i]] / n << std::setw(12) << points[i].error
               << std::setw(12) << own_totals[order[i]] / n << std::setw(12) << bias_totals[order[i]] / n << std::setw(12)
-              << noise_totals[order[i]] / n << std::setw(12) << still_totals[order[i]] / n << std::setw(12)
+              << noise_totals[order[i]] / n << std::setw(12) << still_totals[order[i]] / n << std::setw(12) << still_noise_totals[order[i]] / n << std::setw(12)
               << turn_totals[order[i]] / n << std::setw(12) << instability_totals[order[i]] / n << order[i]->name
               << (points[i].on_front ? "  [front]" : "") << (points[i].mark.empty() ? "" : "  <- " + points[i].mark) << "\n";
   }

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <string>
 
 namespace hal {
 
@@ -19,6 +20,53 @@ void yuv_to_rgb(int y, int u, int v, std::uint8_t* rgb) {
   rgb[0] = clamp8((c + 409 * e + 128) >> 8);
   rgb[1] = clamp8((c - 100 * d - 208 * e + 128) >> 8);
   rgb[2] = clamp8((c + 516 * d + 128) >> 8);
+}
+
+// The frame header of a JPEG: walks the marker segments up to the first SOFn (a SOF marker inside
+// another segment's payload, such as Exif, is skipped with it) or the start of scan.
+struct JpegFrame {
+  int width = 0, height = 0, components = 0;
+};
+bool jpeg_frame(std::span<const std::uint8_t> jpeg, JpegFrame& frame, std::string& why) {
+  if (jpeg.size() < 4 || jpeg[0] != 0xFF || jpeg[1] != 0xD8) {
+    why = "no start-of-image marker";
+    return false;
+  }
+  std::size_t i = 2;
+  while (i + 1 < jpeg.size()) {
+    if (jpeg[i] != 0xFF) {
+      why = "expected a marker at byte " + std::to_string(i);
+      return false;
+    }
+    const std::uint8_t marker = jpeg[i + 1];
+    if (marker == 0xFF) {  // fill byte before a marker
+      ++i;
+      continue;
+    }
+    i += 2;
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
+    if (marker == 0xD9 || marker == 0xDA) break;  // end of image, start of scan: no frame header came
+    if (i + 2 > jpeg.size()) break;
+    const std::size_t length = static_cast<std::size_t>(jpeg[i] << 8 | jpeg[i + 1]);
+    if (length < 2 || i + length > jpeg.size()) {
+      why = "a segment runs past the end of the frame";
+      return false;
+    }
+    const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (sof) {
+      if (length < 8) {
+        why = "a frame header too short";
+        return false;
+      }
+      frame.height = jpeg[i + 3] << 8 | jpeg[i + 4];
+      frame.width = jpeg[i + 5] << 8 | jpeg[i + 6];
+      frame.components = jpeg[i + 7];
+      return true;
+    }
+    i += length;
+  }
+  why = "no frame header before the image data";
+  return false;
 }
 
 }  // namespace
@@ -54,6 +102,25 @@ bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std
   auto& in = impl_->input;
   if (!in) {
     if (error) *error = "JPEG decoder: OpenImageIO has no JPEG reader";
+    return false;
+  }
+  // The frame's size is checked before the decoder sees it: OpenImageIO's open() already starts
+  // decompressing, and libjpeg allocates by the declared size, so a corrupt frame declaring
+  // 65535x65535 asked for 4.4 GB (a fuzz finding) before the size could be refused.
+  JpegFrame frame;
+  std::string why;
+  if (!jpeg_frame(jpeg, frame, why)) {
+    if (error) *error = "MJPEG frame: not a decodable JPEG: " + why;
+    return false;
+  }
+  if (frame.width != out.width || frame.height != out.height) {
+    if (error)
+      *error = "MJPEG frame: expected " + std::to_string(out.width) + "x" + std::to_string(out.height) + ", got " +
+               std::to_string(frame.width) + "x" + std::to_string(frame.height);
+    return false;
+  }
+  if (frame.components != 1 && frame.components != 3) {
+    if (error) *error = "MJPEG frame: expected 1 or 3 colour components, got " + std::to_string(frame.components);
     return false;
   }
   // The decoder reads the frame where the driver mapped it, through an in-memory I/O proxy.

@@ -164,5 +164,44 @@ TEST(Convert, MjpegErrorsSayWhatWasWrong) {
   EXPECT_TRUE(dec.decode(jpeg, ok, &err)) << err;
 }
 
+// The size a frame declares is checked before the decoder sees it: libjpeg allocates by it, and a
+// corrupt frame declaring 65535x65535 asked for 4.4 GB (fuzz finding, tests/fuzz/regressions/mjpeg).
+// The check walks the marker segments, so a SOF marker inside an APP segment's payload (Exif) is
+// not taken for the frame's.
+TEST(Convert, MjpegRefusesADeclaredSizeBeforeDecoding) {
+  auto jpeg = encode_jpeg(quadrants());
+  std::size_t sof = 0;
+  for (std::size_t i = 2; i + 1 < jpeg.size(); ++i)
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC0) {
+      sof = i;
+      break;
+    }
+  ASSERT_GT(sof, 0u);
+  auto huge = jpeg;
+  huge[sof + 5] = huge[sof + 6] = huge[sof + 7] = huge[sof + 8] = 0xFF;  // 65535 x 65535
+  MjpegDecoder dec;
+  RgbImage out(32, 32);
+  std::string err;
+  EXPECT_FALSE(dec.decode(huge, out, &err));
+  EXPECT_EQ(err, "MJPEG frame: expected 32x32, got 65535x65535");
+  // An APP1 segment right after SOI whose payload holds a fake SOF0 declaring 32x32.
+  const std::vector<std::uint8_t> app1 = {0xFF, 0xE1, 0x00, 0x0D, 'E', 'x', 'i', 'f', 0xFF, 0xC0, 0x00, 0x11, 0x08, 0x00, 0x20};
+  auto disguised = huge;
+  disguised.insert(disguised.begin() + 2, app1.begin(), app1.end());
+  EXPECT_FALSE(dec.decode(disguised, out, &err));
+  EXPECT_EQ(err, "MJPEG frame: expected 32x32, got 65535x65535");
+  auto with_app1 = jpeg;
+  with_app1.insert(with_app1.begin() + 2, app1.begin(), app1.end());
+  EXPECT_TRUE(dec.decode(with_app1, out, &err)) << err;
+  expect_quadrants(out);
+  // Cut inside a segment, or before any frame header.
+  const std::vector<std::uint8_t> cut(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(sof + 4));
+  EXPECT_FALSE(dec.decode(cut, out, &err));
+  EXPECT_EQ(err, "MJPEG frame: not a decodable JPEG: a segment runs past the end of the frame");
+  const std::vector<std::uint8_t> no_frame = {0xFF, 0xD8, 0xFF, 0xDA, 0x00, 0x02, 0xFF, 0xD9};
+  EXPECT_FALSE(dec.decode(no_frame, out, &err));
+  EXPECT_EQ(err, "MJPEG frame: not a decodable JPEG: no frame header before the image data");
+}
+
 }  // namespace
 }  // namespace hal

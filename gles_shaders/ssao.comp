@@ -47,8 +47,7 @@ highp float depth_at(ivec2 texel, int level) {
 }
 
 highp vec3 view_position(ivec2 texel, highp float depth) {
-  highp vec2 ndc = (vec2(texel) + 0.5) / vec2(ssao.config.zw) * 2.0 - 1.0;
-  return vec3((ndc + ssao.unproject.zw) * depth * ssao.unproject.xy, -depth);
+  return view_position_at(texel, depth, ssao.unproject, ssao.config.zw);
 }
 
 // Per-sample arithmetic runs at this precision; AO_MEDIUMP (--precision mediump) makes it fp16 as

@@ -34,8 +34,7 @@ void main() {
   // The AO pixel shaded the first full-resolution pixel of its block (ssao.comp).
   ivec2 pixel = ao_pixel << temporal.config.z;
   highp float depth = current.g * temporal.depth.x;
-  highp vec2 ndc = (vec2(pixel) + 0.5) / vec2(temporal.size.zw) * 2.0 - 1.0;
-  highp vec3 position = vec3((ndc + temporal.unproject.zw) * depth * temporal.unproject.xy, -depth);
+  highp vec3 position = view_position_at(pixel, depth, temporal.unproject, temporal.size.zw);
   highp vec3 normal = normalize(mat3(temporal.view_to_world) * texelFetch(u_normal, pixel, 0).xyz);
 
   highp float history = 0.0, frames = 0.0, weight_sum = 0.0;

@@ -22,6 +22,16 @@
 
 namespace {
 
+// A 1.6 x 0.9 screen watched from 2.5 away, up to the [modules] table, which each test fills in.
+constexpr const char* kDeskModules = R"(type = "modules"
+[screen]
+width = 1.6
+height = 0.9
+[observer]
+distance = 2.5
+[modules]
+)";
+
 class LightField : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
@@ -131,14 +141,7 @@ TEST_P(LightField, QuiltTilesHoldTheirViewsFromTheBottomLeft) {
 
 // Modules whose image the scene cannot reach are not rendered and show the background.
 TEST_P(LightField, ModulesThatSeeNothingAreSkipped) {
-  const lightfield::Display d = display(R"(type = "modules"
-[screen]
-width = 1.6
-height = 0.9
-[observer]
-distance = 2.5
-[modules]
-count = 16
+  const lightfield::Display d = display(std::string(kDeskModules) + R"(count = 16
 x_first = -1.0
 x_last = 1.0
 z = -1.2
@@ -330,14 +333,7 @@ physical_max = [0.5, 0.375, 0.25]
 // What play shows: the output presented onto the surface keeps its bytes, on an sRGB surface (egl's)
 // as on a plain one (osmesa's), letterboxed in black.
 TEST_P(LightField, PresentKeepsTheOutputsBytesOnTheSurface) {
-  const lightfield::Display d = display(R"(type = "modules"
-[screen]
-width = 1.6
-height = 0.9
-[observer]
-distance = 2.5
-[modules]
-count = 1
+  const lightfield::Display d = display(std::string(kDeskModules) + R"(count = 1
 x_first = 0.0
 x_last = 0.0
 z = -1.2

@@ -50,10 +50,6 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     ao_raw = make_target(GL_RGBA16F, ao_width(), ao_height());
     ao_temp = make_target(GL_RGBA16F, ao_width(), ao_height());
     ao_blurred = make_target(GL_RGBA16F, ao_width(), ao_height());
-    for (int i = 0; i < 2; ++i) {
-      history[i] = modules ? gl::Texture{} : make_target(GL_RGBA32F, ao_width(), ao_height());
-      history_normal[i] = modules ? gl::Texture{} : make_target(GL_RGBA8_SNORM, ao_width(), ao_height());
-    }
 
     gbuffer_fbo = gl::make_framebuffer();
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo.id());
@@ -79,7 +75,7 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     shared_layout::CompositeParams composite{};
     composite_ubo = make_uniform_buffer(&composite, sizeof composite);
     temporal_params = shared_layout::TemporalParams{};
-    temporal_ubo = modules ? gl::Buffer{} : make_uniform_buffer(&temporal_params, sizeof temporal_params);
+    temporal_ubo = make_uniform_buffer(&temporal_params, sizeof temporal_params);
     shared_layout::ModuleParams module_params{};
     module_ubo = modules ? make_uniform_buffer(&module_params, sizeof module_params) : gl::Buffer{};
     modules_ = modules;
@@ -90,6 +86,16 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     detail::update_uniform_buffer(ssao_ubo, &ssao_params, sizeof ssao_params);
     for (int direction = 0; direction < 2; ++direction)
       detail::update_uniform_buffer(blur_ubo[direction], &blur_params[direction], sizeof blur_params[direction]);
+  }
+  // The history is allocated only where it is used (light field outputs never accumulate).
+  for (int i = 0; i < 2; ++i) {
+    if (!settings.temporal) {
+      history[i] = gl::Texture{};
+      history_normal[i] = gl::Texture{};
+    } else if (reallocate || !history[i]) {
+      history[i] = make_target(GL_RGBA32F, ao_width(), ao_height());
+      history_normal[i] = make_target(GL_RGBA8_SNORM, ao_width(), ao_height());
+    }
   }
   const GLenum gl_status = gl::api.GetError();
   if (gl_status != GL_NO_ERROR) {

@@ -25,9 +25,9 @@ class ViewTargets {
   const FrameSettings& settings() const { return settings_; }
   int ao_width() const { return ssao_params.counts.z; }
   int ao_height() const { return ssao_params.counts.w; }
-  // Whether this view accumulates AO over frames (never for light field modules, which share
-  // one set of targets among many views).
-  bool temporal() const { return settings_.temporal && !modules_; }
+  // Whether this view accumulates AO over frames (LightFieldOutput turns it off: its views share
+  // one set of targets, so the previous frame there is another view's).
+  bool temporal() const { return settings_.temporal; }
   // The AO before the blur: this frame's, or its average over frames (at the AO resolution).
   const gl::Texture& ao_unblurred() const { return temporal() ? history[history_current] : ao_raw; }
   // The AO texture the present pass reads: blurred when a blur is on, else ao_unblurred().

@@ -169,6 +169,11 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     b.status_file = f.str("status_file", "");
     b.self_check_interval_s = static_cast<double>(f.integer("self_check_interval_s", 0, 0, 86400 * 7));
   }
+  if (const auto* t = table("display")) {
+    const Fields f(*t, source_name, "display.");
+    b.display_rotation = static_cast<int>(f.integer("rotation", 0, 0, 270));
+    if (b.display_rotation % 90 != 0) f.fail("rotation", "0, 90, 180 or 270 (degrees clockwise)");
+  }
   ButtonTiming defaults;
   if (const auto* t = table("buttons")) defaults = read_timing(Fields(*t, source_name, "buttons."), defaults);
   if (const auto* a = array("button")) {

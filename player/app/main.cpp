@@ -125,6 +125,22 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(platform::names()))->capture_default_str();
   play_cmd->add_option("--size", play_size, "Surface size WxH (headless platforms; a window's initial size)")->capture_default_str();
   play_cmd->add_flag("--fullscreen", play.fullscreen, "Start the window fullscreen (F11 toggles)");
+  play_cmd->add_option("--drm-device", play.drm_device,
+                       "kms: the DRM node (default: the first with KMS and a connected display; card numbers change between boots)");
+  play_cmd->add_option("--drm-connector", play.drm_connector,
+                       "kms: the connector, by name (HDMI-A-1, DSI-1, ...); auto: the first connected; help: list them and exit")
+      ->capture_default_str();
+  play_cmd->add_option("--drm-mode", play.drm_mode, "kms: preferred, highest, or WxH[@R] (e.g. 1920x1080@60)")->capture_default_str();
+  play_cmd->add_option("--drm-atomic", play.drm_atomic, "kms: auto (atomic modesetting where the driver offers it) or no (legacy)")
+      ->check(CLI::IsMember({"auto", "no"}))->capture_default_str();
+  play_cmd->add_option("--snapshot", play.snapshot,
+                       "With --frames N: write frame N-1 as drawn onto the surface (after rotation) to FILE (PNG), before it is presented");
+  play_cmd->add_option("--rotation", play.rotation,
+                       "Turn frames 0, 90, 180 or 270 degrees clockwise for a display mounted turned (default: the board file's "
+                       "[display] rotation, else 0); the renderer turns them, not the display controller")
+      ->check(CLI::IsMember({0, 90, 180, 270}));
+  play_cmd->add_option("--drm-writeback", play.drm_writeback,
+                       "kms: at exit, write what the display shows to FILE (PNG), read back through the DRM writeback connector");
   play_cmd->add_option("--overlay", play.overlay, "Panel with the status LEDs and the state: on, off, or auto (on in a window)")
       ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
   play_cmd->add_option("--frames", play.frames, "Stop after N frames (0: run until SIGTERM or SIGINT)")
@@ -148,6 +164,21 @@ int main(int argc, char** argv) {
   CLI11_PARSE(cli, argc, argv);
 
   if (cli.get_subcommands().empty() || play_cmd->parsed()) {
+    if (play.drm_connector == "help") {
+      platform::Options options;
+      options.drm_device = play.drm_device;
+      std::string text, error;
+      if (!platform::describe_kms_outputs(options, text, error)) {
+        std::cerr << "error: " << error << "\n";
+        return 2;
+      }
+      std::cout << text;
+      return 0;
+    }
+    if (!play.snapshot.empty() && play.frames == 0) {
+      std::cerr << "error: --snapshot: expected --frames N as well (the snapshot is of frame N-1)\n";
+      return 2;
+    }
     if (!apply_frame_options(play_size, play.width, play.height, play_settings, play.settings)) return 2;
     return app::run_play(play, std::cout, std::cerr);
   }

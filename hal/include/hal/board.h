@@ -57,6 +57,9 @@ struct BoardConfig {
   std::optional<CameraConfig> camera;
   std::string status_file;
   double self_check_interval_s = 0;  // the player's display self-check period; 0: only on demand
+  // [display] rotation: how far the player turns its frames (clockwise, as seen) for a display mounted
+  // turned; done by the renderer, since many boards cannot rotate the scanout. 0, 90, 180 or 270.
+  int display_rotation = 0;
   std::string mock_button_script;  // relative paths are resolved against the board file's folder
   std::vector<std::string> mock_camera_images;
 };

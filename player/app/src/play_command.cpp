@@ -12,8 +12,10 @@
 #include "loader.h"
 #include "render/light_field.h"
 #include "overlay.h"
+#include "service_notify.h"
 #include "playback/timeline.h"
 #include "render/renderer.h"
+#include "render/rotation.h"
 
 #include <poll.h>
 #include <signal.h>
@@ -46,7 +48,9 @@ double wall_seconds() {
 }
 
 // The states the status file and LEDs report.
-enum class State { starting, loading, playing, paused, error };
+// no_display: the kms platform has no display to show frames on (none connected, or another process
+// holds it); the playlist clock runs on and nothing is drawn.
+enum class State { starting, loading, playing, paused, error, no_display };
 std::string_view name(State state) {
   switch (state) {
     case State::starting: return "starting";
@@ -54,6 +58,7 @@ std::string_view name(State state) {
     case State::playing: return "playing";
     case State::paused: return "paused";
     case State::error: return "error";
+    case State::no_display: return "no display";
   }
   return "?";
 }
@@ -70,6 +75,7 @@ LedPlan led_plan(State state, bool warning, bool check_failed) {
     case State::playing: plan.status = hal::LedPattern::Heartbeat; break;
     case State::paused: plan.status = hal::LedPattern::On; break;
     case State::error: plan.error = hal::LedPattern::On; break;
+    case State::no_display: plan.status = hal::LedPattern::BlinkSlow; break;
   }
   if (state != State::error) plan.error = check_failed ? hal::LedPattern::BlinkFast : warning ? hal::LedPattern::BlinkSlow : hal::LedPattern::Off;
   return plan;
@@ -147,10 +153,29 @@ double ms_since_process_start() {
   return (now_s - static_cast<double>(start_ticks) / static_cast<double>(sysconf(_SC_CLK_TCK))) * 1000.0;
 }
 
+// run()'s answer when the GPU was reset and the context told of it: every GL resource is gone, and
+// run_play makes a new Player (context, programs, scenes) that plays on from where this one was.
+constexpr int kGpuReset = -1;
+// The process's code when the context is lost and cannot be rebuilt here (no reset notification,
+// or resets that keep coming): a service manager restarts the player.
+constexpr int kGpuLost = 4;
+
+// Where a Player that lost its GPU context was: the next one plays on from there.
+struct Resume {
+  bool resumed = false;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double wall_start = wall_seconds();
+  hal::Nanos manual_now{0};
+  long long frames = 0;
+};
+
 class Player {
  public:
-  Player(const PlayOptions& options, std::ostream& out, std::ostream& err) : options_(options), out_(out), err_(err) {}
+  Player(const PlayOptions& options, std::ostream& out, std::ostream& err, const Resume& resume = {})
+      : options_(options), out_(out), err_(err), resumed_(resume.resumed), manual_{resume.manual_now}, start_(resume.start),
+        wall_start_(resume.wall_start), frame_(resume.frames) {}
   int run();
+  Resume resume_point() const { return {true, start_, wall_start_, manual_.now(), frame_}; }
 
  private:
   bool set_up_hal();
@@ -178,6 +203,8 @@ class Player {
   void make_item_keys();
   const std::string& key_of(int item) const { return item_keys_[static_cast<size_t>(item)]; }
   render::FrameSettings settings_for(int item) const;
+  // The frame's size and target for the surface's size and the board's rotation.
+  bool configure_rotation(std::string& error);
   double now_seconds() const;
 
   const PlayOptions& options_;
@@ -188,7 +215,10 @@ class Player {
   gl::Caps caps_;
   render::Programs programs_;
   render::ViewTargets targets_;
-  render::PresentTarget present_{};
+  render::PresentTarget surface_{};  // the platform's framebuffer
+  render::PresentTarget present_{};  // where frames are drawn: the surface, or the rotation's target
+  render::Rotation rotation_;
+  int rotation_degrees_ = 0;
   gl::FrameTimer timer_;
 
   std::string playlist_path_;  // empty: scenes from the command line
@@ -208,12 +238,14 @@ class Player {
   // Clocks: without --fps a headless run advances 1/30 s a frame on a manual clock, so a run is
   // reproducible; otherwise the monotonic clock.
   bool manual_clock_ = false;
-  hal::ManualClock manual_{hal::Nanos{0}};
+  bool resumed_ = false;
+  hal::ManualClock manual_;
   hal::MonotonicClock monotonic_;
   const hal::Clock* hal_clock_ = &monotonic_;
-  Clock::time_point start_ = Clock::now();
-  double wall_start_ = wall_seconds();
-  long long frame_ = 0;
+  Clock::time_point start_;
+  double wall_start_;
+  long long frame_;
+  bool context_lost_ = false;  // GL_CONTEXT_LOST without reset notification: nothing to rebuild from
 
   hal::BoardConfig board_;
   hal::Devices devices_;
@@ -228,6 +260,7 @@ class Player {
   double next_check_ = 0.0;
   FrameStats stats_;
   double last_frame_s_ = -1.0;
+  double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown
   double last_status_s_ = -1e9;
   std::string last_status_text_;
   std::ofstream log_;
@@ -262,8 +295,17 @@ class Player {
   std::vector<Overlay::Lamp> lamps_;
 
   hal::UniqueFd signal_fd_, inotify_fd_;
+  ServiceNotifier service_;  // systemd: READY, WATCHDOG, STATUS, STOPPING (board/ssao-player.service)
   std::map<int, std::string> watched_dirs_;  // watch descriptor -> folder
 };
+
+bool Player::configure_rotation(std::string& error) {
+  surface_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
+  const platform::Size size = platform_->size();
+  if (!rotation_.configure(programs_, rotation_degrees_, size.width, size.height, surface_.srgb, error)) return false;
+  present_ = rotation_.target(surface_);
+  return true;
+}
 
 double Player::now_seconds() const {
   if (manual_clock_) return std::chrono::duration<double>(manual_.now()).count();
@@ -356,8 +398,8 @@ void Player::watch_content() {
 
 render::FrameSettings Player::settings_for(int item) const {
   render::FrameSettings settings = options_.settings;
-  settings.width = platform_->size().width;
-  settings.height = platform_->size().height;
+  settings.width = rotation_.width();
+  settings.height = rotation_.height();
   if (item >= 0 && item < static_cast<int>(playlist_->items.size())) {
     const playback::Item& entry = playlist_->items[static_cast<size_t>(item)];
     std::string ignored;  // validated when the playlist was read
@@ -572,7 +614,24 @@ void Player::handle_platform_events(bool& stop) {
     const platform::Event& event = events[i];
     switch (event.type) {
       case platform::EventType::close_requested: stop = true; break;
-      case platform::EventType::resized: configured_item_ = -2; break;
+      case platform::EventType::resized: {
+        configured_item_ = -2;
+        std::string error;
+        if (!configure_rotation(error)) report(error);
+        break;
+      }
+      case platform::EventType::display_lost:
+        out_ << "display: " << platform_->not_presenting_reason() << " at " << now_seconds() << " s; the playlist plays on unseen\n"
+             << std::flush;
+        state_ = State::no_display;
+        update_status(true);
+        break;
+      case platform::EventType::display_found:
+        out_ << "display: " << platform_->description() << " at " << now_seconds() << " s\n" << std::flush;
+        display_found_s_ = now_seconds();
+        configured_item_ = -2;
+        break;
+      case platform::EventType::warning: report(platform_->last_error()); break;
       case platform::EventType::key_press:
       case platform::EventType::key_release:
         if (auto* mock = dynamic_cast<hal::MockButtons*>(devices_.buttons.get()))
@@ -593,7 +652,7 @@ void Player::start_self_check(double now) {
     report("self-check: the board has no camera");
     return;
   }
-  const int w = platform_->size().width, h = platform_->size().height;
+  const int w = rotation_.width(), h = rotation_.height();
   const std::vector<uint8_t> rgba = render::read_presented(present_, w, h);
   check_image_.resize(w, h);
   for (size_t i = 0, n = static_cast<size_t>(w) * static_cast<size_t>(h); i < n; ++i)
@@ -620,7 +679,7 @@ void Player::start_self_check(double now) {
 }
 
 void Player::draw_check_frame() {
-  const int w = platform_->size().width, h = platform_->size().height;
+  const int w = rotation_.width(), h = rotation_.height();
   gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, check_fbo_.id());
   gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, present_.framebuffer);
   gl::api.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -720,14 +779,14 @@ void Player::render_frame(const playback::Frame& frame) {
     // Every module or view, then what the display is fed (a quilt's panel image, the modules'
     // montage) scaled onto the surface. Per-pass times are per view here: the frame is not timed by pass.
     light_field_.render(programs_, *gpu, light_field_targets_, frame.fade, false, {}, &gl_error_);
-    light_field_.present(programs_, present_, platform_->size().width, platform_->size().height);
+    light_field_.present(programs_, present_, rotation_.width(), rotation_.height());
   } else if (gpu != nullptr) {
     const render::Frame pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
     render::render_view(pass, present_, frame.fade);
   } else {
     // Nothing to draw yet (loading) or nothing playable: the background colour.
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer);
-    gl::api.Viewport(0, 0, platform_->size().width, platform_->size().height);
+    gl::api.Viewport(0, 0, rotation_.width(), rotation_.height());
     const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     gl::api.ClearBufferfv(GL_COLOR, 0, black);
   }
@@ -762,6 +821,7 @@ void Player::set_leds() {
 }
 
 void Player::update_status(bool force) {
+  service_.state(name(state_));  // before the period: a state change reaches systemd at once
   const double now = now_seconds();
   constexpr double kPeriod = 2.0;  // often enough for a monitor, rarely enough for an SD card
   if (!force && now - last_status_s_ < kPeriod) return;
@@ -770,6 +830,7 @@ void Player::update_status(bool force) {
   // round trip on some drivers. (--check-errors style per-pass checks are for tests and debugging.)
   if (platform_) {
     const GLenum gl_status = gl::api.GetError();
+    if (gl_status == GL_CONTEXT_LOST_KHR) context_lost_ = true;
     if (gl_status != GL_NO_ERROR) {
       char text[64];
       std::snprintf(text, sizeof text, "GL error 0x%04x during playback", gl_status);
@@ -798,9 +859,16 @@ void Player::update_status(bool force) {
 }
 
 int Player::run() {
-  manual_clock_ = options_.fps <= 0.0 && options_.platform != "window";
+  // The platform is named before anything opens, because it decides the clock: a display (window,
+  // kms) runs on real time, headless runs on the reproducible manual clock.
+  std::string platform_why;
+  const std::string platform_name =
+      options_.platform == "auto" ? std::string(platform::choose_auto(platform_why)) : options_.platform;
+  manual_clock_ = options_.fps <= 0.0 && platform_name != "window" && platform_name != "kms";
   if (manual_clock_) hal_clock_ = &manual_;
   if (!set_up_hal() || !set_up_watch()) return 1;
+  if (!service_.error().empty()) report(service_.error());
+  service_.state(name(state_));  // `systemctl status` says starting while the shaders compile
   set_leds();
 
   // What to play.
@@ -829,9 +897,14 @@ int Player::run() {
   }
 
   platform::Options platform_options;
-  platform_options.name = options_.platform;
+  platform_options.name = platform_name;
+  platform_options.display = true;
   platform_options.size = {options_.width, options_.height};
   platform_options.fullscreen = options_.fullscreen;
+  platform_options.drm_device = options_.drm_device;
+  platform_options.drm_connector = options_.drm_connector;
+  platform_options.drm_mode = options_.drm_mode;
+  platform_options.drm_atomic = options_.drm_atomic;
   std::string error;
   platform_ = gl::open_context(platform_options, error);
   if (!platform_) {
@@ -842,7 +915,12 @@ int Player::run() {
   gl::install_debug_log(caps_, false);
   // Textures beyond what this GPU can hold are drawn white with a warning, not failed at upload.
   loader_->set_scene_options(load_options_for(caps_));
-  present_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
+  surface_ = {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
+  rotation_degrees_ = options_.rotation >= 0 ? options_.rotation : board_.display_rotation;
+  if (!configure_rotation(error)) {
+    err_ << "error: " << error << "\n";
+    return 2;
+  }
   // Every SSAO variant now, so a playlist item with another estimator or precision does not compile mid-play.
   if (!programs_.build(caps_, error)) {
     err_ << "error: " << error << "\n";
@@ -857,10 +935,15 @@ int Player::run() {
   timer_.create(caps_.timer_query, false);
   overlay_on_ = options_.overlay == "on" || (options_.overlay == "auto" && platform_->name() == "window");
   lamps_.resize(devices_.status->led_count());
-  out_ << "platform: " << platform_->name() << " (" << platform_->description() << "; " << caps_.renderer << ")\n";
+  out_ << "platform: " << platform_->name() << " (" << platform_->description() << "; " << caps_.renderer << ")"
+       << (platform_why.empty() ? "" : ", chosen because " + platform_why) << "\n";
+  if (!platform_->presenting()) {
+    out_ << "display: " << platform_->not_presenting_reason() << "; waiting for one\n";
+    state_ = State::no_display;
+  }
   out_ << "playing " << (playlist_path_.empty() ? std::string("the command line's scenes") : playlist_path_) << ": "
        << playlist_->items.size() << " item(s)\n" << std::flush;
-  if (!options_.log_file.empty()) log_.open(options_.log_file);
+  if (!options_.log_file.empty()) log_.open(options_.log_file, resumed_ ? std::ios::app : std::ios::trunc);
   if (!options_.out_dir.empty()) fs::create_directories(options_.out_dir);
 
   make_item_keys();
@@ -869,6 +952,7 @@ int Player::run() {
   update_status(true);
 
   bool stop = false;
+  int exit_code = 0;
   const double frame_interval = options_.fps > 0.0 ? 1.0 / options_.fps : 1.0 / 30.0;
   double next_frame = 0.0;
   std::vector<pollfd> fds;
@@ -879,7 +963,8 @@ int Player::run() {
                    devices_.status->fd(), devices_.camera ? devices_.camera->fd() : -1})
       if (fd >= 0) fds.push_back({fd, POLLIN, 0});
     int timeout_ms = 0;
-    if (!manual_clock_ && options_.fps > 0.0)
+    if (!platform_->presenting()) timeout_ms = platform_->poll_interval_ms();
+    else if (!manual_clock_ && options_.fps > 0.0)
       timeout_ms = std::max(0, static_cast<int>((next_frame - now_seconds()) * 1000.0));
     poll(fds.data(), fds.size(), timeout_ms);
 
@@ -891,6 +976,24 @@ int Player::run() {
     const double now = now_seconds();
     handle_buttons(now);
     devices_.status->update();
+    if (!platform_->presenting()) {
+      // No display to show on (kms: none connected, or another process holds it): the playlist
+      // clock runs on and scenes keep loading, so a display that comes back shows the right item.
+      if (state_ != State::no_display) {
+        state_ = State::no_display;
+        update_status(true);
+      }
+      const playback::Frame frame = timeline_->at(now, wall_start_ + now);
+      last_item_ = frame.item;
+      request_scenes(frame);
+      step_uploads();
+      service_camera(now);
+      // The loop is alive and waiting, which is all the watchdog checks; READY=1 too, so a player
+      // behind a switched-off TV starts as a service instead of timing out.
+      service_.frame_presented(monotonic_.now());
+      update_status(false);
+      continue;
+    }
     if (options_.fps > 0.0 && now < next_frame) {
       service_camera(now);
       continue;
@@ -922,19 +1025,36 @@ int Player::run() {
       for (size_t led = 0; led < lamps_.size(); ++led)
         lamps_[led] = {devices_.status->led_name(led), hal::to_string(devices_.status->pattern(led)), devices_.status->level(led)};
       overlay_.update(name(state_), lamps_, present_.srgb);
-      overlay_.draw(present_.framebuffer, platform_->size().height);
+      overlay_.draw(present_.framebuffer, rotation_.height());
     }
     if (!options_.out_dir.empty()) {
       char name[32];
       std::snprintf(name, sizeof name, "frame-%06lld.png", frame_);
-      const std::vector<uint8_t> rgba = render::read_presented(present_, platform_->size().width, platform_->size().height);
-      if (!write_png((fs::path(options_.out_dir) / name).string(), platform_->size().width, platform_->size().height, rgba, error)) {
+      const std::vector<uint8_t> rgba = render::read_presented(present_, rotation_.width(), rotation_.height());
+      if (!write_png((fs::path(options_.out_dir) / name).string(), rotation_.width(), rotation_.height(), rgba, error)) {
         err_ << "error: " << error << "\n";
         return 1;
       }
     }
-    if (!platform_->present()) stop = true;
+    rotation_.finish(programs_, surface_);
+    if (!options_.snapshot.empty() && frame_ + 1 == options_.frames) {
+      // The last frame as the GPU drew it onto the surface, before it goes to the display.
+      const std::vector<uint8_t> rgba = render::read_presented(surface_, platform_->size().width, platform_->size().height);
+      if (!write_png(options_.snapshot, platform_->size().width, platform_->size().height, rgba, error)) {
+        err_ << "error: --snapshot: " << error << "\n";
+        return 1;
+      }
+    }
+    if (!platform_->present()) {
+      err_ << "error: " << platform_->last_error() << "\n";
+      exit_code = 3;
+      stop = true;
+    } else service_.frame_presented(monotonic_.now());  // only presented frames feed the watchdog
     if (frame_ == 0) out_ << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+    if (display_found_s_ >= 0.0 && platform_->presenting()) {
+      out_ << "display: showing frames again " << (now_seconds() - display_found_s_) * 1000.0 << " ms after it came\n" << std::flush;
+      display_found_s_ = -1.0;
+    }
     service_camera(now);
     if (log_.is_open()) {
       log_ << frame_ << " t=" << now << " item=" << frame.item << " state=" << name(state_);
@@ -956,19 +1076,67 @@ int Player::run() {
     update_status(false);
     if (manual_clock_) manual_.advance(std::chrono::duration_cast<hal::Nanos>(std::chrono::duration<double>(frame_interval)));
     if (options_.frames > 0 && frame_ >= options_.frames) break;
+    // A reset is asked about every frame (a query the driver answers from the CPU side): after one,
+    // every draw is dropped until the context is made anew.
+    if (gl::api.GetGraphicsResetStatus != nullptr) {
+      const GLenum reset = gl::api.GetGraphicsResetStatus();
+      if (reset != GL_NO_ERROR) {
+        err_ << "warning: the GPU was reset (" << (reset == GL_GUILTY_CONTEXT_RESET_KHR ? "caused by this player" : reset == GL_INNOCENT_CONTEXT_RESET_KHR ? "caused elsewhere" : "cause unknown")
+             << ") at frame " << frame_ - 1 << "\n";
+        return kGpuReset;
+      }
+    }
+    if (context_lost_) {
+      err_ << "error: the GL context is lost and this driver does not tell of GPU resets, so nothing can be rebuilt; exiting ("
+           << kGpuLost << ") for the service manager to restart the player\n";
+      return kGpuLost;
+    }
     if (frame.finished) break;
   }
-  state_ = state_ == State::error ? State::error : State::playing;
+  service_.stopping();
+  if (!options_.drm_writeback.empty() && exit_code == 0) {
+    // What the display shows now, the last frame presented, read back from the display hardware.
+    std::vector<std::uint8_t> rgba;
+    platform::Size size;
+    if (platform_->capture_scanout(rgba, size, error) && write_png(options_.drm_writeback, size.width, size.height, rgba, error)) {
+      out_ << "scanout of frame " << frame_ - 1 << " captured to " << options_.drm_writeback << "\n";
+    } else {
+      err_ << "error: --drm-writeback: " << error << "\n";
+      exit_code = 1;
+    }
+  }
+  state_ = state_ == State::error || state_ == State::no_display ? state_ : State::playing;
   update_status(true);
   out_ << "played " << frame_ << " frames, " << errors_.size() << " error(s)\n";
-  return 0;
+  return exit_code;
 }
 
 }  // namespace
 
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
-  Player player(options, out, err);
-  return player.run();
+  Resume resume;
+  std::vector<Clock::time_point> resets;
+  for (;;) {
+    Resume next;
+    {
+      Player player(options, out, err, resume);
+      const int code = player.run();
+      if (code != kGpuReset) return code;
+      next = player.resume_point();
+    }  // every GL object, the context and the devices go before the next player opens them again
+    // A GPU that resets again and again is not recovering here; a fresh process (or a reboot) may.
+    const Clock::time_point now = Clock::now();
+    resets.push_back(now);
+    std::erase_if(resets, [&](Clock::time_point t) { return now - t > std::chrono::minutes(1); });
+    if (resets.size() > 3) {
+      err << "error: the GPU was reset " << resets.size() << " times within a minute; exiting (" << kGpuLost
+          << ") for the service manager to restart the player\n";
+      return kGpuLost;
+    }
+    resume = next;
+    out << "GPU reset: the context and every GL resource are made anew; playing on from frame " << resume.frames << "\n"
+        << std::flush;
+  }
 }
 
 }  // namespace app

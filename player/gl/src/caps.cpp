@@ -31,9 +31,10 @@ std::vector<std::pair<std::string, bool>> Caps::extensions_used() const {
   if (desktop_gl) {
     used = {{"GL_ARB_ES3_1_compatibility", has("GL_ARB_ES3_1_compatibility")},
             {"GL_ARB_timer_query", timer_query},
-            {"GL_KHR_debug", debug_output}};
+            {"GL_KHR_debug", debug_output}, {"GL_KHR_robustness", reset_notification}};
   } else {
-    used = {{"GL_EXT_disjoint_timer_query", timer_query}, {"GL_KHR_debug", debug_output}};
+    used = {{"GL_EXT_disjoint_timer_query", timer_query}, {"GL_KHR_debug", debug_output},
+            {has("GL_EXT_robustness") && !has("GL_KHR_robustness") ? "GL_EXT_robustness" : "GL_KHR_robustness", reset_notification}};
   }
   return used;
 }
@@ -63,6 +64,13 @@ Caps query_caps() {
     api.DebugMessageCallback = nullptr;
     api.DebugMessageControl = nullptr;
   }
+  // Reset notification needs the extension (core in desktop GL 4.5) and a context made to lose itself
+  // on reset; anything else never answers anything but GL_NO_ERROR.
+  const bool robustness = caps.desktop_gl || caps.has("GL_KHR_robustness") || caps.has("GL_EXT_robustness");
+  GLint strategy = 0;
+  if (robustness && api.GetGraphicsResetStatus != nullptr) api.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY_KHR, &strategy);
+  caps.reset_notification = strategy == GL_LOSE_CONTEXT_ON_RESET_KHR;
+  if (!caps.reset_notification) api.GetGraphicsResetStatus = nullptr;
   api.GetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &caps.max_compute_work_group_invocations);
   api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.max_texture_size);
   return caps;

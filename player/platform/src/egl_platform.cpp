@@ -3,35 +3,16 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include "egl_util.h"
+
 #include <cstring>
 #include <string>
 
 namespace platform {
 namespace {
 
-bool has_extension(const char* list, const char* name) {
-  if (list == nullptr) return false;
-  const size_t length = std::strlen(name);
-  for (const char* at = std::strstr(list, name); at != nullptr; at = std::strstr(at + 1, name))
-    if ((at == list || at[-1] == ' ') && (at[length] == ' ' || at[length] == '\0')) return true;
-  return false;
-}
-
-std::string egl_error_name(EGLint code) {
-  switch (code) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error 0x" + std::to_string(code);
-  }
-}
+using egl::error_name;
+using egl::has_extension;
 
 // A headless surface: a pbuffer of the requested size, sRGB-encoding where EGL_KHR_gl_colorspace
 // lets it be, so the present pass writes linear colour as a display's framebuffer would take it.
@@ -74,11 +55,11 @@ class EglPlatform final : public Platform {
     }
     if (surface == EGL_NO_SURFACE) {
       error = "egl: no pbuffer of " + std::to_string(size.width) + "x" + std::to_string(size.height) + " (" +
-              egl_error_name(eglGetError()) + ")";
+              error_name(eglGetError()) + ")";
       return false;
     }
     if (!eglMakeCurrent(display_, surface, surface, context_)) {
-      error = "egl: eglMakeCurrent on the pbuffer failed (" + egl_error_name(eglGetError()) + ")";
+      error = "egl: eglMakeCurrent on the pbuffer failed (" + error_name(eglGetError()) + ")";
       eglDestroySurface(display_, surface);
       return false;
     }
@@ -110,15 +91,8 @@ struct Made {
 Made make_context(EGLDisplay display, bool debug, std::string& why) {
   Made made;
   EGLint major = 0, minor = 0;
-  if (!eglInitialize(display, &major, &minor)) {
-    why = "eglInitialize failed (" + egl_error_name(eglGetError()) + ")";
-    return made;
-  }
+  if (!egl::initialize(display, major, minor, why)) return made;
   const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
-  if (!eglBindAPI(EGL_OPENGL_ES_API)) {
-    why = "eglBindAPI(EGL_OPENGL_ES_API) failed";
-    return made;
-  }
   EGLConfig config = nullptr;
   const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT_KHR, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
                            EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_NONE};
@@ -127,14 +101,8 @@ Made make_context(EGLDisplay display, bool debug, std::string& why) {
     why = "no EGL config renders OpenGL ES 3 into an RGBA8 pbuffer";
     return made;
   }
-  const bool debug_ok = debug && (major > 1 || minor >= 5);
-  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 1,
-                               debug_ok ? EGL_CONTEXT_OPENGL_DEBUG : EGL_NONE, EGL_TRUE, EGL_NONE};
-  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
-  if (context == EGL_NO_CONTEXT) {
-    why = "eglCreateContext for OpenGL ES 3.1 failed (" + egl_error_name(eglGetError()) + ")";
-    return made;
-  }
+  EGLContext context = egl::create_context(display, config, major, minor, debug, why);
+  if (context == EGL_NO_CONTEXT) return made;
   made.config = config;
   made.context = context;
   made.colorspace = has_extension(extensions, "EGL_KHR_gl_colorspace");

@@ -1,5 +1,7 @@
 #include "backends.h"
 
+#include <cstdlib>
+
 namespace platform {
 namespace {
 
@@ -8,6 +10,8 @@ constexpr Entry kRegistry[] = {
     {"osmesa", "Mesa's OSMesa, desktop GL 4.5 core running the same ES 3.1 shaders", true, create_osmesa},
     {"window", "a desktop window (SDL2, X11 or Wayland) with OpenGL ES 3.1 on EGL; F11 toggles fullscreen", false,
      create_window},
+    {"kms", "fullscreen on a display through DRM/KMS and EGL on GBM, no display server (the board default)", false,
+     create_kms},
 };
 
 }  // namespace
@@ -33,6 +37,15 @@ std::unique_ptr<Platform> create(const Options& options, std::string& error) {
             " is not a surface size (expected positive width and height)";
     return nullptr;
   }
+  if (options.name == "auto" && options.display) {
+    std::string why;
+    const std::string_view chosen = choose_auto(why);
+    Options resolved = options;
+    resolved.name = chosen;
+    if (auto platform = create(resolved, error)) return platform;
+    error += " (platform " + std::string(chosen) + " chosen because " + why + "; --platform chooses another)";
+    return nullptr;
+  }
   if (options.name == "auto") {
     std::string attempts;
     for (const Entry& entry : registry()) {
@@ -48,6 +61,23 @@ std::unique_ptr<Platform> create(const Options& options, std::string& error) {
     if (entry.name == options.name) return entry.create(options, error);
   error = "--platform: unknown platform '" + std::string(options.name) + "' (expected " + names_text() + ")";
   return nullptr;
+}
+
+std::string_view choose_auto(std::string& why) {
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  const char* x11 = std::getenv("DISPLAY");
+  if ((wayland != nullptr && *wayland != '\0') || (x11 != nullptr && *x11 != '\0')) {
+    why = std::string("a display server runs (") + (wayland != nullptr && *wayland != '\0' ? "WAYLAND_DISPLAY" : "DISPLAY") +
+          " is set)";
+    return "window";
+  }
+  std::string device;
+  if (find_kms_device(device)) {
+    why = device + " drives displays (KMS) and no display server runs";
+    return "kms";
+  }
+  why = "no display server runs and no DRM device drives a display";
+  return "egl";
 }
 
 }  // namespace platform

@@ -94,6 +94,16 @@ const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision pre
   return &program;
 }
 
+bool Programs::build_rotate(std::string& error) {
+  if (rotate) return true;
+  rotate = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "rotate.frag"}}, "", error);
+  if (!rotate) return false;
+  detail::assign_units(rotate, {"u_source"});
+  rotate_quarter_turns = gl::uniform(rotate, "u_quarter_turns");
+  gl::api.UseProgram(0);
+  return true;
+}
+
 bool Programs::build_interleave(std::string& error) {
   if (interleave) return true;
   interleave = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "interleave.frag"}}, "", error);

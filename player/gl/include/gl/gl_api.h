@@ -65,7 +65,8 @@ namespace gl {
   X(PFNGLQUERYCOUNTEREXTPROC, QueryCounter)                         \
   X(PFNGLGETQUERYOBJECTUI64VEXTPROC, GetQueryObjectui64v)           \
   X(PFNGLDEBUGMESSAGECALLBACKKHRPROC, DebugMessageCallback)         \
-  X(PFNGLDEBUGMESSAGECONTROLKHRPROC, DebugMessageControl)
+  X(PFNGLDEBUGMESSAGECONTROLKHRPROC, DebugMessageControl)         \
+  X(PFNGLGETGRAPHICSRESETSTATUSKHRPROC, GetGraphicsResetStatus)
 
 struct Api {
 #define PLAYER_GL_MEMBER(type, name) type name = nullptr;

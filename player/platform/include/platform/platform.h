@@ -20,14 +20,15 @@ struct Size {
   bool operator==(const Size&) const = default;
 };
 
-// What a platform receives besides frames: window keys, resize and close (later page flips and
-// hotplug). Plain data, so draining events allocates nothing.
-enum class EventType : std::uint8_t { key_press, key_release, resized, close_requested };
+// What a platform receives besides frames: window keys, resize and close, a display that comes or
+// goes (kms hotplug, DRM master lost and back). Plain data, so draining events allocates nothing.
+// `warning`: something the player should report once (a refused commit); last_error() says what.
+enum class EventType : std::uint8_t { key_press, key_release, resized, close_requested, display_lost, display_found, warning };
 
 struct Event {
   EventType type = EventType::close_requested;
   char key[24] = {};  // key_press/key_release: the key's name as board files write it ("space", "n", "f11")
-  Size size;          // resized: the new surface size
+  Size size;          // resized, display_found: the new surface size
 };
 
 class Platform {
@@ -63,13 +64,41 @@ class Platform {
     (void)out;
     return 0;
   }
+
+  // False while frames cannot be shown (kms: no display connected, another process holds the
+  // display); the player then draws nothing, keeps its clock, and waits on event_fd() for at most
+  // poll_interval_ms() before draining events again. not_presenting_reason() says why.
+  virtual bool presenting() const { return true; }
+  virtual std::string not_presenting_reason() const { return {}; }
+  virtual int poll_interval_ms() const { return 100; }
+  // The last error of present(): why it returned false.
+  virtual std::string last_error() const { return {}; }
+
+  // What the display shows now, read back from the hardware's output (kms: a writeback connector),
+  // as top-down RGBA8. False and why where the platform or the driver cannot.
+  virtual bool capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, std::string& error) {
+    (void)rgba;
+    (void)size;
+    error = std::string(name()) + ": cannot capture what the display shows (only kms with a writeback connector can)";
+    return false;
+  }
 };
 
 struct Options {
-  std::string_view name = "auto";  // a registry name, or "auto" (the first that works, in registry order)
-  Size size{1024, 768};            // the surface to make; a window's initial size
+  // A registry name, or "auto": with `display` the platform for a screen (see choose_auto), without it
+  // the first headless one that works.
+  std::string_view name = "auto";
+  bool display = false;            // the caller shows frames (play), rather than reading them back (render)
+  Size size{1024, 768};            // the surface to make; a window's initial size; kms: the size while no display is connected
   bool fullscreen = false;         // window: start fullscreen
   bool debug_context = false;
+  // kms, as mpv names them: the DRM node (empty: the first with KMS and a connected display), the
+  // connector (auto, or a name such as HDMI-A-1), the mode (preferred, highest, WxH[@R]) and whether
+  // atomic modesetting is used where the driver offers it (auto, no).
+  std::string drm_device;
+  std::string drm_connector = "auto";
+  std::string drm_mode = "preferred";
+  std::string drm_atomic = "auto";
 };
 
 // One row per platform; the only place platforms are listed.
@@ -81,13 +110,22 @@ struct Entry {
 };
 std::span<const Entry> registry();
 
+// For "auto" with `display`: kms where a DRM device with KMS exists and no display server runs
+// (neither WAYLAND_DISPLAY nor DISPLAY is set), window where one runs, egl otherwise. `why` says which
+// rule chose it, for the first status line.
+std::string_view choose_auto(std::string& why);
+
+// The kms connectors of `options.drm_device` (or of every DRM device when empty) with their state and
+// modes, for --drm-connector help. False and why when no device can be opened.
+bool describe_kms_outputs(const Options& options, std::string& text, std::string& error);
+
 // Creates a context with its surface and makes it current on this thread (then call gl::load).
 // Returns null and says why in `error` when the platform is unknown or nothing could be made.
 std::unique_ptr<Platform> create(const Options& options, std::string& error);
 
 // "auto" and every registry name, for option checks and messages.
 std::vector<std::string> names();
-// "auto, egl, osmesa or window", for --help and error messages.
+// "auto, kms, egl, osmesa or window", for --help and error messages.
 std::string names_text();
 
 }  // namespace platform

@@ -43,6 +43,10 @@ class Programs {
   // An sRGB-encoded texture into a framebuffer that encodes itself (decode_copy.frag), built with it.
   gl::Program decode_copy;
   GLint decode_copy_rect = -1;
+  // A frame turned by quarter turns onto the surface (rotate.frag, see render/rotation.h), compiled on first call.
+  bool build_rotate(std::string& error);
+  gl::Program rotate;
+  GLint rotate_quarter_turns = -1;
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs

@@ -31,7 +31,7 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
   for (const auto& l : board.leds) led_names.push_back(l.name);
 
   if (backend == Backend::Linux) {
-    d.buttons = open_gpio_buttons(board.buttons, board.consumer, clock, d.problems);
+    d.buttons = open_linux_buttons(board.buttons, board.consumer, clock, d.problems);
     d.status = std::make_unique<Status>(led_names, open_gpio_leds(board.leds, board.consumer, d.problems), clock,
                                         board.status_file);
     if (board.camera) {

@@ -2,10 +2,12 @@
 // The parts of the GPIO backends that do not need a GPIO chip: reading edge-event fds into debounced
 // buttons, and LED outputs that can fail while running. GpioButtons and GpioLeds add the libgpiod
 // line requests; tests drive these through pipes and fake writers.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "button_logic.h"
+#include "keyboards_evdev.h"
 #include "hal/buttons.h"
 #include "hal/status.h"
 #include "hal/unique_fd.h"
@@ -16,12 +18,19 @@ namespace hal::detail {
 // epoll set. A line whose fd fails (ENODEV once its chip is gone, EIO at end of file) would keep
 // that set readable forever and make the app's poll loop spin, so it is taken out of the set, its
 // button released and the failure kept for last_error().
-class EdgeButtons : public Buttons {
+//
+// Keyboard keys (Keyboards) can press the same buttons: a button is down while its line is active
+// or any of its keys is held, and the debounce logic sees the edges of that combined level.
+class EdgeButtons : public Buttons, private KeySink {
 public:
   EdgeButtons(std::vector<std::string> names, std::vector<ButtonTiming> timing, const Clock& clock);
   // Watches `fd` (owned by the caller, made non-blocking here) for `button`'s edges; `pressed` is its
   // level now, `line` names it in errors ("line GPIO17").
   void watch(std::size_t button, int fd, bool pressed, std::string line);
+  // Adds keyboards as a second source of presses; their epoll set joins this one.
+  void add_keyboards(std::unique_ptr<Keyboards> keyboards);
+  // Keyboards open now (0 without any).
+  std::size_t keyboards_open() const { return keyboards_ ? keyboards_->open_count() : 0; }
 
   int fd() const override { return epoll_.get(); }
   std::size_t count() const override { return names_.size(); }
@@ -37,6 +46,9 @@ private:
     std::string name;
   };
   void fail(Line& line, int err);
+  void key(std::size_t button, bool pressed, Nanos time) override;
+  // A line's level changed: an edge for the logic unless a key holds the button down anyway.
+  void line_level(std::size_t button, bool pressed, Nanos time);
 
   std::vector<std::string> names_;
   ButtonLogic logic_;
@@ -45,6 +57,9 @@ private:
   UniqueFd timer_;
   std::vector<Line> lines_;
   std::string error_;
+  std::vector<bool> line_down_;           // by button: its GPIO line is active
+  std::vector<unsigned> keys_down_;       // by button: keys holding it, over all keyboards
+  std::unique_ptr<Keyboards> keyboards_;  // closed before the epoll set (declared after it)
 };
 
 // LED outputs whose writes can fail while running (the chip unbound or unplugged). A failing LED is

@@ -17,7 +17,7 @@ LD_PRELOAD=$shim GPU_RESET_AT=8 "$player" play --platform egl --size 64x48 --fra
   --status "$out/reset.json" >"$out/reset.out" 2>&1 || fail "the player exited with $? after one reset"
 cat "$out/reset.out"
 grep -q "^warning: the GPU was reset (caused by this player) at frame 7$" "$out/reset.out" || fail "the reset was not reported"
-grep -q "^GPU reset: the context and every GL resource are made anew; playing on from frame 8$" "$out/reset.out" ||
+grep -q "^remake: the platform, its context and every GL resource are made anew (the GPU was reset (caused by this player) at frame 7); playing on from frame 8$" "$out/reset.out" ||
   fail "the player did not say it rebuilt"
 [ "$(grep -c '^platform: egl' "$out/reset.out")" -eq 2 ] || fail "expected a second context"
 grep -q "^played 20 frames, 0 error(s)$" "$out/reset.out" || fail "expected 20 frames in all"
@@ -32,6 +32,6 @@ LD_PRELOAD=$shim GPU_RESET_AT=2 GPU_RESET_REPEAT=1 "$player" play --platform egl
   >"$out/reset.out" 2>&1 && fail "resets that keep coming did not end the process"
 code=$?
 [ "$code" -eq 4 ] || fail "expected exit code 4 after repeated resets, got $code"
-grep -q "^error: the GPU was reset 4 times within a minute; exiting (4) for the service manager to restart the player$" \
+grep -q "^error: the platform had to be made anew 4 times within a minute (last: the GPU was reset (caused by this player) at frame [0-9]*); exiting (4) for the service manager to restart the player$" \
   "$out/reset.out" || fail "the repeated resets were not explained"
 echo PASS

@@ -28,6 +28,11 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
 // The linux backends, also usable on their own. Missing lines are appended to `problems`.
 std::unique_ptr<Buttons> open_gpio_buttons(const std::vector<ButtonConfig>& buttons, const std::string& consumer,
                                            const Clock& clock, std::vector<std::string>& problems);
+// The GPIO buttons plus keyboards: a key whose name is a button's `key` (board_key_name) presses
+// that button, from any evdev keyboard in `input_dir`, also one plugged in later. open_devices uses it.
+std::unique_ptr<Buttons> open_linux_buttons(const std::vector<ButtonConfig>& buttons, const std::string& consumer,
+                                            const Clock& clock, std::vector<std::string>& problems,
+                                            const std::string& input_dir = "/dev/input");
 std::unique_ptr<LedSink> open_gpio_leds(const std::vector<LedConfig>& leds, const std::string& consumer,
                                         std::vector<std::string>& problems);
 // Never null: a device that cannot be opened yields a camera in state Lost that retries. `clock` times

@@ -153,9 +153,11 @@ double ms_since_process_start() {
   return (now_s - static_cast<double>(start_ticks) / static_cast<double>(sysconf(_SC_CLK_TCK))) * 1000.0;
 }
 
-// run()'s answer when the GPU was reset and the context told of it: every GL resource is gone, and
-// run_play makes a new Player (context, programs, scenes) that plays on from where this one was.
-constexpr int kGpuReset = -1;
+// run()'s answer when the platform must be made anew: the GPU was reset and the context told of it
+// (every GL resource is gone), or the kms platform can only have its display again through a new
+// open of the device. run_play makes a new Player (platform, context, programs, scenes) that plays
+// on from where this one was.
+constexpr int kRemake = -1;
 // The process's code when the context is lost and cannot be rebuilt here (no reset notification,
 // or resets that keep coming): a service manager restarts the player.
 constexpr int kGpuLost = 4;
@@ -176,6 +178,7 @@ class Player {
         wall_start_(resume.wall_start), frame_(resume.frames) {}
   int run();
   Resume resume_point() const { return {true, start_, wall_start_, manual_.now(), frame_}; }
+  const std::string& remake_reason() const { return remake_reason_; }
 
  private:
   bool set_up_hal();
@@ -246,6 +249,7 @@ class Player {
   double wall_start_;
   long long frame_;
   bool context_lost_ = false;  // GL_CONTEXT_LOST without reset notification: nothing to rebuild from
+  std::string remake_reason_;  // why run() returns kRemake
 
   hal::BoardConfig board_;
   hal::Devices devices_;
@@ -632,6 +636,7 @@ void Player::handle_platform_events(bool& stop) {
         configured_item_ = -2;
         break;
       case platform::EventType::warning: report(platform_->last_error()); break;
+      case platform::EventType::remake: remake_reason_ = platform_->last_error(); break;
       case platform::EventType::key_press:
       case platform::EventType::key_release:
         if (auto* mock = dynamic_cast<hal::MockButtons*>(devices_.buttons.get()))
@@ -973,6 +978,7 @@ int Player::run() {
     handle_inotify();
     handle_loader();
     handle_platform_events(stop);
+    if (!remake_reason_.empty()) return kRemake;
     const double now = now_seconds();
     handle_buttons(now);
     devices_.status->update();
@@ -1081,9 +1087,13 @@ int Player::run() {
     if (gl::api.GetGraphicsResetStatus != nullptr) {
       const GLenum reset = gl::api.GetGraphicsResetStatus();
       if (reset != GL_NO_ERROR) {
-        err_ << "warning: the GPU was reset (" << (reset == GL_GUILTY_CONTEXT_RESET_KHR ? "caused by this player" : reset == GL_INNOCENT_CONTEXT_RESET_KHR ? "caused elsewhere" : "cause unknown")
-             << ") at frame " << frame_ - 1 << "\n";
-        return kGpuReset;
+        remake_reason_ = std::string("the GPU was reset (") +
+                         (reset == GL_GUILTY_CONTEXT_RESET_KHR     ? "caused by this player"
+                          : reset == GL_INNOCENT_CONTEXT_RESET_KHR ? "caused elsewhere"
+                                                                   : "cause unknown") +
+                         ") at frame " + std::to_string(frame_ - 1);
+        err_ << "warning: " << remake_reason_ << "\n";
+        return kRemake;
       }
     }
     if (context_lost_) {
@@ -1115,27 +1125,29 @@ int Player::run() {
 
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
   Resume resume;
+  std::string reason;
   std::vector<Clock::time_point> resets;
   for (;;) {
     Resume next;
     {
       Player player(options, out, err, resume);
       const int code = player.run();
-      if (code != kGpuReset) return code;
+      if (code != kRemake) return code;
       next = player.resume_point();
+      reason = player.remake_reason();
     }  // every GL object, the context and the devices go before the next player opens them again
     // A GPU that resets again and again is not recovering here; a fresh process (or a reboot) may.
     const Clock::time_point now = Clock::now();
     resets.push_back(now);
     std::erase_if(resets, [&](Clock::time_point t) { return now - t > std::chrono::minutes(1); });
     if (resets.size() > 3) {
-      err << "error: the GPU was reset " << resets.size() << " times within a minute; exiting (" << kGpuLost
-          << ") for the service manager to restart the player\n";
+      err << "error: the platform had to be made anew " << resets.size() << " times within a minute (last: " << reason
+          << "); exiting (" << kGpuLost << ") for the service manager to restart the player\n";
       return kGpuLost;
     }
     resume = next;
-    out << "GPU reset: the context and every GL resource are made anew; playing on from frame " << resume.frames << "\n"
-        << std::flush;
+    out << "remake: the platform, its context and every GL resource are made anew (" << reason << "); playing on from frame "
+        << resume.frames << "\n" << std::flush;
   }
 }
 

@@ -156,7 +156,8 @@ std::uint64_t property_value(int fd, std::uint32_t object, std::uint32_t type, c
 // The CRTC for a connector: the one it drives now, else the first its encoders can reach.
 bool find_crtc(int fd, std::uint32_t connector_id, std::uint32_t& crtc, int& crtc_index) {
   ResourcesPtr resources(drmModeGetResources(fd));
-  ConnectorPtr connector(drmModeGetConnector(fd, connector_id));
+  // Current state only: the connector was just probed, and a probe reads the display's EDID again.
+  ConnectorPtr connector(drmModeGetConnectorCurrent(fd, connector_id));
   if (!resources || !connector) return false;
   auto index_of = [&](std::uint32_t id) {
     for (int i = 0; i < resources->count_crtcs; ++i)
@@ -285,13 +286,14 @@ void destroy_fb(gbm_bo* bo, void* data) {
 class KmsPlatform final : public Platform {
  public:
   ~KmsPlatform() override {
-    if (flip_pending_) wait_for_flip(kFlipTimeoutMs);
+    // The locked buffers go back first: Mesa frees a surface's buffers, locked or not, with its EGL
+    // surface, and gbm_surface_release_buffer would then read freed memory.
+    release_buffers();
     if (display_ != EGL_NO_DISPLAY) {
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (egl_surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, egl_surface_);
       if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
     }
-    release_buffers();
     if (surface_ != nullptr) gbm_surface_destroy(surface_);
     if (mode_blob_ != 0) drmModeDestroyPropertyBlob(fd_.get(), mode_blob_);
     // The display is terminated before GBM goes: EGL's GBM platform holds the device.
@@ -335,19 +337,31 @@ class KmsPlatform final : public Platform {
   static constexpr int kFlipTimeoutMs = 1000;
   static constexpr int kFlipTimeoutsBeforeGivingUp = 3;
 
+  // Each commit's event carries its sequence number as user data; an event of a flip given up on
+  // (timed out, then completed late) must not be taken for the one pending now.
+  static thread_local KmsPlatform* handling_events_;
   static void on_flip(int fd, unsigned frame, unsigned sec, unsigned usec, void* data) {
     (void)fd;
     (void)frame;
     (void)sec;
     (void)usec;
-    static_cast<KmsPlatform*>(data)->flip_done();
+    KmsPlatform* self = handling_events_;
+    if (self != nullptr && self->flip_pending_ && reinterpret_cast<std::uintptr_t>(data) == self->flip_sequence_) self->flip_done();
   }
   void flip_done() {
     flip_pending_ = false;
+    flip_timeouts_ = 0;
     if (shown_ != nullptr) gbm_surface_release_buffer(surface_, shown_);
     shown_ = pending_;
     pending_ = nullptr;
   }
+  // A flip that did not complete in time: its buffer stays locked (it may be on screen or become so)
+  // until a modeset puts a new one there; its event, should it come, is ignored.
+  void abandon_flip() {
+    flip_pending_ = false;
+    ++flip_sequence_;
+  }
+  void* flip_user_data() const { return reinterpret_cast<void*>(static_cast<std::uintptr_t>(flip_sequence_)); }
   bool wait_for_flip(int timeout_ms);
   void release_buffers();
   std::uint32_t framebuffer_for(gbm_bo* bo, std::string& error);
@@ -355,6 +369,12 @@ class KmsPlatform final : public Platform {
   bool set_up_output(const Probe& found, int connector_index, int mode_index, std::string& error);
   bool modeset(std::uint32_t fb, int& error_code);
   bool flip(std::uint32_t fb, int& error_code);
+  // After an error that a new open of the device would clear: the player makes the platform anew.
+  void request_remake(std::string reason) {
+    reason_ = std::move(reason);
+    last_error_ = reason_;
+    push(EventType::remake);
+  }
   // Reads the connectors and starts or stops presenting to match.
   void reprobe();
   void stop_presenting(std::string reason, bool retry);
@@ -395,22 +415,34 @@ class KmsPlatform final : public Platform {
     std::uint32_t connector_crtc = 0, crtc_mode = 0, crtc_active = 0, plane_fb = 0, plane_crtc = 0, src_x = 0, src_y = 0,
                   src_w = 0, src_h = 0, crtc_x = 0, crtc_y = 0, crtc_w = 0, crtc_h = 0;
   } props_;
-  AtomicPtr request_{drmModeAtomicAlloc()};  // reused every frame, so a flip allocates nothing
+  // What the last modeset drove, switched off when a hotplug moves the output elsewhere.
+  std::uint32_t driven_connector_ = 0, driven_connector_crtc_prop_ = 0, driven_crtc_ = 0, driven_crtc_active_prop_ = 0,
+                driven_crtc_mode_prop_ = 0, driven_plane_ = 0, driven_plane_fb_prop_ = 0, driven_plane_crtc_prop_ = 0;
+  // Other planes (overlays, cursors) another client left on this CRTC: switched off at the modeset.
+  struct OtherPlane {
+    std::uint32_t id = 0, fb_prop = 0, crtc_prop = 0;
+  };
+  std::vector<OtherPlane> other_planes_;
+  AtomicPtr request_{drmModeAtomicAlloc()};  // for modesets; a flip is one ioctl on arrays of its own
 
   bool presenting_ = false, needs_modeset_ = true, flip_pending_ = false;
   gbm_bo* shown_ = nullptr;    // on the screen now
-  gbm_bo* pending_ = nullptr;  // queued to flip at the next vblank
-  int flip_timeouts_ = 0;
+  gbm_bo* pending_ = nullptr;  // queued to flip at the next vblank (or a flip given up on)
+  std::uint64_t flip_sequence_ = 1;
+  int flip_timeouts_ = 0;  // in a row: reset only when a flip's event arrives
   std::string reason_ = "no display", last_error_;
   // After an error (master lost, a refused modeset) the output is tried again at retry_at_, the
   // wait doubling up to 5 s; a uevent tries at once.
   bool retry_pending_ = false;
   SteadyClock::time_point retry_at_{};
   std::chrono::milliseconds backoff_{100};
+  SteadyClock::time_point next_look_{};  // without hotplug events: when the connectors are read again
 
   std::array<Event, 16> queue_{};
   std::size_t queued_ = 0;
 };
+
+thread_local KmsPlatform* KmsPlatform::handling_events_ = nullptr;
 
 std::unique_ptr<Platform> KmsPlatform::create(const Options& options, std::string& error) {
   auto platform = std::unique_ptr<KmsPlatform>(new KmsPlatform());
@@ -539,8 +571,9 @@ bool KmsPlatform::make_surface(Size size, std::string& error) {
     gbm_surface_destroy(surface);
     return false;
   }
-  if (egl_surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, egl_surface_);
+  // The old surface's buffers go back before its EGL surface (which frees them) and its GBM surface.
   release_buffers();
+  if (egl_surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, egl_surface_);
   if (surface_ != nullptr) gbm_surface_destroy(surface_);
   surface_ = surface;
   egl_surface_ = egl_surface;
@@ -550,8 +583,7 @@ bool KmsPlatform::make_surface(Size size, std::string& error) {
 }
 
 void KmsPlatform::release_buffers() {
-  if (flip_pending_) wait_for_flip(kFlipTimeoutMs);
-  flip_pending_ = false;
+  if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) abandon_flip();
   if (surface_ == nullptr) return;
   if (pending_ != nullptr) gbm_surface_release_buffer(surface_, pending_);
   if (shown_ != nullptr) gbm_surface_release_buffer(surface_, shown_);
@@ -568,6 +600,7 @@ bool KmsPlatform::set_up_output(const Probe& found, int connector_index, int mod
     return false;
   }
   std::uint32_t plane = 0;
+  std::vector<OtherPlane> others;
   if (atomic_) {
     plane = find_primary_plane(fd, crtc_index);
     props_.connector_crtc = property_id(fd, connector.id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID");
@@ -583,10 +616,22 @@ bool KmsPlatform::set_up_output(const Probe& found, int connector_index, int mod
     props_.crtc_y = property_id(fd, plane, DRM_MODE_OBJECT_PLANE, "CRTC_Y");
     props_.crtc_w = property_id(fd, plane, DRM_MODE_OBJECT_PLANE, "CRTC_W");
     props_.crtc_h = property_id(fd, plane, DRM_MODE_OBJECT_PLANE, "CRTC_H");
-    if (plane == 0 || props_.connector_crtc == 0 || props_.crtc_mode == 0 || props_.plane_fb == 0 || !request_) {
+    const std::uint32_t all[] = {props_.connector_crtc, props_.crtc_mode, props_.crtc_active, props_.plane_fb, props_.plane_crtc,
+                                 props_.src_x,          props_.src_y,     props_.src_w,       props_.src_h,    props_.crtc_x,
+                                 props_.crtc_y,         props_.crtc_w,    props_.crtc_h};
+    if (plane == 0 || !request_ || std::find(std::begin(all), std::end(all), 0u) != std::end(all)) {
       // A driver whose atomic interface lacks what a modeset needs: legacy does it.
       atomic_ = false;
       plane = 0;
+    }
+    if (PlaneResourcesPtr planes{drmModeGetPlaneResources(fd)}; atomic_ && planes) {
+      for (std::uint32_t i = 0; i < planes->count_planes; ++i) {
+        const std::uint32_t id = planes->planes[i];
+        if (id == plane) continue;
+        PlanePtr other(drmModeGetPlane(fd, id));
+        if (other && other->crtc_id == crtc)
+          others.push_back({id, property_id(fd, id, DRM_MODE_OBJECT_PLANE, "FB_ID"), property_id(fd, id, DRM_MODE_OBJECT_PLANE, "CRTC_ID")});
+      }
     }
   }
   const drmModeModeInfo& raw = found.raw_modes[static_cast<size_t>(connector_index)][static_cast<size_t>(mode_index)];
@@ -611,6 +656,7 @@ bool KmsPlatform::set_up_output(const Probe& found, int connector_index, int mod
   raw_mode_ = raw;
   crtc_ = crtc;
   plane_ = plane;
+  other_planes_ = std::move(others);
   needs_modeset_ = true;
   return true;
 }
@@ -628,13 +674,20 @@ std::uint32_t KmsPlatform::framebuffer_for(gbm_bo* bo, std::string& error) {
     modifiers[p] = modifier;
   }
   const std::uint32_t width = gbm_bo_get_width(bo), height = gbm_bo_get_height(bo), format = gbm_bo_get_format(bo);
+  const bool with_modifier = modifiers_ && modifier != DRM_FORMAT_MOD_INVALID;
   std::uint32_t fb = 0;
-  const int result = modifiers_ && modifier != DRM_FORMAT_MOD_INVALID
-                         ? drmModeAddFB2WithModifiers(fd_.get(), width, height, format, handles, strides, offsets, modifiers, &fb,
-                                                      DRM_MODE_FB_MODIFIERS)
-                         : drmModeAddFB2(fd_.get(), width, height, format, handles, strides, offsets, &fb, 0);
+  const int result = with_modifier ? drmModeAddFB2WithModifiers(fd_.get(), width, height, format, handles, strides, offsets, modifiers,
+                                                                &fb, DRM_MODE_FB_MODIFIERS)
+                                   : drmModeAddFB2(fd_.get(), width, height, format, handles, strides, offsets, &fb, 0);
   if (result != 0) {
-    error = "kms: drmModeAddFB2 " + std::to_string(width) + "x" + std::to_string(height) + " failed (" + errno_text(errno) + ")";
+    char fourcc[5] = {static_cast<char>(format), static_cast<char>(format >> 8), static_cast<char>(format >> 16),
+                      static_cast<char>(format >> 24), '\0'};
+    char modifier_text[32];
+    std::snprintf(modifier_text, sizeof modifier_text, "0x%016llx", static_cast<unsigned long long>(modifier));
+    error = "kms: " + device_path_ + " refused a " + std::to_string(width) + "x" + std::to_string(height) + " " + fourcc +
+            " framebuffer with " + std::to_string(planes) + " plane(s), " +
+            (with_modifier ? std::string("modifier ") + modifier_text : std::string("no modifier")) + " (drmModeAddFB2: " +
+            errno_text(errno) + ")";
     return 0;
   }
   gbm_bo_set_user_data(bo, new FbData{fd_.get(), fb}, destroy_fb);
@@ -647,6 +700,19 @@ bool KmsPlatform::modeset(std::uint32_t fb, int& error_code) {
   if (atomic_) {
     drmModeAtomicReq* request = request_.get();
     drmModeAtomicSetCursor(request, 0);
+    // What a hotplug moved the output away from is switched off in the same commit.
+    if (driven_connector_ != 0 && driven_connector_ != connector_.id)
+      drmModeAtomicAddProperty(request, driven_connector_, driven_connector_crtc_prop_, 0);
+    if (driven_crtc_ != 0 && driven_crtc_ != crtc_) {
+      drmModeAtomicAddProperty(request, driven_plane_, driven_plane_fb_prop_, 0);
+      drmModeAtomicAddProperty(request, driven_plane_, driven_plane_crtc_prop_, 0);
+      drmModeAtomicAddProperty(request, driven_crtc_, driven_crtc_active_prop_, 0);
+      drmModeAtomicAddProperty(request, driven_crtc_, driven_crtc_mode_prop_, 0);
+    }
+    for (const OtherPlane& other : other_planes_) {
+      drmModeAtomicAddProperty(request, other.id, other.fb_prop, 0);
+      drmModeAtomicAddProperty(request, other.id, other.crtc_prop, 0);
+    }
     const auto w = static_cast<std::uint64_t>(mode_.width), h = static_cast<std::uint64_t>(mode_.height);
     drmModeAtomicAddProperty(request, connector_.id, props_.connector_crtc, crtc_);
     drmModeAtomicAddProperty(request, crtc_, props_.crtc_mode, mode_blob_);
@@ -663,24 +729,44 @@ bool KmsPlatform::modeset(std::uint32_t fb, int& error_code) {
     drmModeAtomicAddProperty(request, plane_, props_.crtc_h, h);
     result = drmModeAtomicCommit(fd, request, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr);
   } else {
+    if (driven_crtc_ != 0 && driven_crtc_ != crtc_) drmModeSetCrtc(fd, driven_crtc_, 0, 0, 0, nullptr, 0, nullptr);
     std::uint32_t connector = connector_.id;
     result = drmModeSetCrtc(fd, crtc_, fb, 0, 0, &connector, 1, &raw_mode_);
   }
   error_code = result == 0 ? 0 : errno;
+  if (result == 0) {
+    other_planes_.clear();
+    driven_connector_ = connector_.id;
+    driven_connector_crtc_prop_ = props_.connector_crtc;
+    driven_crtc_ = crtc_;
+    driven_crtc_active_prop_ = props_.crtc_active;
+    driven_crtc_mode_prop_ = props_.crtc_mode;
+    driven_plane_ = plane_;
+    driven_plane_fb_prop_ = props_.plane_fb;
+    driven_plane_crtc_prop_ = props_.plane_crtc;
+  }
   return result == 0;
 }
 
 bool KmsPlatform::flip(std::uint32_t fb, int& error_code) {
   int result = 0;
   if (atomic_) {
-    drmModeAtomicReq* request = request_.get();
-    drmModeAtomicSetCursor(request, 0);
-    drmModeAtomicAddProperty(request, plane_, props_.plane_fb, fb);
+    // One plane, one property: the ioctl on arrays of its own, since libdrm's commit allocates.
+    std::uint32_t objects[1] = {plane_}, counts[1] = {1}, properties[1] = {props_.plane_fb};
+    std::uint64_t values[1] = {fb};
+    drm_mode_atomic atomic{};
     // No in-fence: the buffer is complete when eglSwapBuffers returns on implicitly synchronised
     // drivers, and llvmpipe has no EGL_ANDROID_native_fence_sync to make one.
-    result = drmModeAtomicCommit(fd_.get(), request, DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT, this);
+    atomic.flags = DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT;
+    atomic.count_objs = 1;
+    atomic.objs_ptr = reinterpret_cast<std::uintptr_t>(objects);
+    atomic.count_props_ptr = reinterpret_cast<std::uintptr_t>(counts);
+    atomic.props_ptr = reinterpret_cast<std::uintptr_t>(properties);
+    atomic.prop_values_ptr = reinterpret_cast<std::uintptr_t>(values);
+    atomic.user_data = flip_sequence_;
+    result = drmIoctl(fd_.get(), DRM_IOCTL_MODE_ATOMIC, &atomic);
   } else {
-    result = drmModePageFlip(fd_.get(), crtc_, fb, DRM_MODE_PAGE_FLIP_EVENT, this);
+    result = drmModePageFlip(fd_.get(), crtc_, fb, DRM_MODE_PAGE_FLIP_EVENT, flip_user_data());
   }
   error_code = result == 0 ? 0 : errno;
   return result == 0;
@@ -691,19 +777,21 @@ bool KmsPlatform::wait_for_flip(int timeout_ms) {
   handlers.version = 2;
   handlers.page_flip_handler = on_flip;
   const SteadyClock::time_point deadline = SteadyClock::now() + std::chrono::milliseconds(timeout_ms);
+  handling_events_ = this;
   while (flip_pending_) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - SteadyClock::now()).count();
-    if (left < 0) return false;
+    if (left < 0) break;
     pollfd wait{fd_.get(), POLLIN, 0};
     const int ready = poll(&wait, 1, static_cast<int>(left));
-    if (ready < 0 && errno != EINTR) return false;
+    if (ready < 0 && errno != EINTR) break;
     if (ready > 0) drmHandleEvent(fd_.get(), &handlers);
   }
-  return true;
+  handling_events_ = nullptr;
+  return !flip_pending_;
 }
 
 void KmsPlatform::stop_presenting(std::string reason, bool retry) {
-  if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) flip_pending_ = false;
+  if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) abandon_flip();
   reason_ = std::move(reason);
   retry_pending_ = retry;
   if (retry) retry_at_ = SteadyClock::now() + backoff_;
@@ -729,34 +817,39 @@ bool KmsPlatform::present() {
   if (fb == 0) {
     gbm_surface_release_buffer(surface_, bo);
     warn(error);
+    stop_presenting("the display takes no framebuffer of this surface: " + error, true);
     return true;
   }
   // The previous frame's flip first: its completion frees the buffer shown before it, and is what
   // paces the loop to the display's refresh.
   if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) {
-    flip_pending_ = false;
-    flip_done();  // taken as shown: nothing else will release it
+    abandon_flip();
     needs_modeset_ = true;
-    warn("kms: a page flip did not complete within " + std::to_string(kFlipTimeoutMs) + " ms; setting the mode again");
+    warn("kms: a page flip on " + connector_.name + " did not complete within " + std::to_string(kFlipTimeoutMs) +
+         " ms; setting the mode again");
     if (++flip_timeouts_ >= kFlipTimeoutsBeforeGivingUp) {
       gbm_surface_release_buffer(surface_, bo);
-      last_error_ = "kms: " + std::to_string(kFlipTimeoutsBeforeGivingUp) + " page flips in a row did not complete on " + device_path_;
+      last_error_ = "kms: " + std::to_string(kFlipTimeoutsBeforeGivingUp) + " page flips in a row on " + connector_.name + " (" +
+                    device_path_ + ") did not complete within " + std::to_string(kFlipTimeoutMs) + " ms";
       return false;
     }
   }
   int code = 0;
-  if (needs_modeset_) {
+  const bool setting_mode = needs_modeset_;
+  if (setting_mode) {
     if (modeset(fb, code)) {
       needs_modeset_ = false;
       backoff_ = std::chrono::milliseconds(100);
+      // The buffers of the old mode (and of a flip given up on) leave the screen with this commit.
       if (shown_ != nullptr) gbm_surface_release_buffer(surface_, shown_);
+      if (pending_ != nullptr) gbm_surface_release_buffer(surface_, pending_);
       shown_ = bo;
+      pending_ = nullptr;
       return true;
     }
   } else if (flip(fb, code)) {
     pending_ = bo;
     flip_pending_ = true;
-    flip_timeouts_ = 0;
     return true;
   }
   gbm_surface_release_buffer(surface_, bo);
@@ -767,12 +860,12 @@ bool KmsPlatform::present() {
     stop_presenting("another process holds the display (DRM master)", true);
     return true;
   }
-  const std::string what = std::string(needs_modeset_ ? (atomic_ ? "atomic modeset" : "drmModeSetCrtc")
-                                                      : (atomic_ ? "atomic page flip" : "drmModePageFlip")) +
-                           " on " + connector_.name + " failed (" + errno_text(code) + ")";
+  const std::string what = std::string(setting_mode ? (atomic_ ? "an atomic modeset to " : "drmModeSetCrtc to ")
+                                                    : (atomic_ ? "an atomic page flip on " : "drmModePageFlip on ")) +
+                           connector_.name + " " + kms::describe(mode_) + " failed (" + errno_text(code) + ")";
   warn("kms: " + what);
   needs_modeset_ = true;
-  stop_presenting("the display refused the mode: " + what, true);
+  stop_presenting(std::string(setting_mode ? "the display refused the mode: " : "the display refused a page flip: ") + what, true);
   return true;
 }
 
@@ -798,10 +891,15 @@ void KmsPlatform::reprobe() {
     return;
   }
   const Connector& connector = found.connectors[static_cast<size_t>(index)];
-  const kms::Mode& mode = connector.modes[static_cast<size_t>(mode_index)];
-  const bool same = presenting_ && connector.id == connector_.id && mode.width == mode_.width && mode.height == mode_.height &&
-                    std::abs(mode.refresh_hz - mode_.refresh_hz) < 0.01;
-  if (same) return;
+  const drmModeModeInfo& raw = found.raw_modes[static_cast<size_t>(index)][static_cast<size_t>(mode_index)];
+  const bool same = presenting_ && connector.id == connector_.id && std::memcmp(&raw, &raw_mode_, sizeof raw) == 0;
+  if (same) {
+    // The same display and mode; a link the driver marks bad (a DP replug) still wants a modeset.
+    if (property_value(fd_.get(), connector.id, DRM_MODE_OBJECT_CONNECTOR, "link-status", DRM_MODE_LINK_STATUS_GOOD) ==
+        DRM_MODE_LINK_STATUS_BAD)
+      needs_modeset_ = true;
+    return;
+  }
   if (!set_up_output(found, index, mode_index, why)) {
     warn(why);
     stop_presenting(why, true);
@@ -814,23 +912,36 @@ void KmsPlatform::reprobe() {
 
 std::size_t KmsPlatform::drain_events(std::span<Event> out) {
   bool changed = false;
+  const SteadyClock::time_point now = SteadyClock::now();
   if (uevent_fd_) {
     char buffer[4096];
     for (;;) {
       const ssize_t length = recv(uevent_fd_.get(), buffer, sizeof buffer, MSG_DONTWAIT);
+      if (length < 0 && errno == ENOBUFS) {
+        changed = true;  // events were dropped: whatever they said, the connectors tell now
+        continue;
+      }
       if (length <= 0) break;
       uevent::Message message;
       if (uevent::parse({buffer, static_cast<size_t>(length)}, message) && uevent::is_drm_change_of(message, device_path_))
         changed = true;
     }
-  } else if (!presenting_ && SteadyClock::now() >= retry_at_) {
-    changed = true;  // no hotplug events: look every second
-    retry_at_ = SteadyClock::now() + std::chrono::seconds(1);
+  } else if (now >= next_look_) {
+    changed = true;  // no hotplug events: the connectors are read every second
+    next_look_ = now + std::chrono::seconds(1);
   }
-  if (!changed && retry_pending_ && SteadyClock::now() >= retry_at_) {
+  if (!changed && retry_pending_ && now >= retry_at_) {
     if (reason_.find("DRM master") != std::string::npos && !drmIsMaster(fd_.get()) && drmSetMaster(fd_.get()) != 0) {
-      backoff_ = std::min(backoff_ * 2, std::chrono::milliseconds(5000));
-      retry_at_ = SteadyClock::now() + backoff_;
+      // Without CAP_SYS_ADMIN the kernel gives master back only to a file that held it. Whether a
+      // new open would get it says whether the other client is gone.
+      Fd probe_fd = open_node(device_path_);
+      if (probe_fd && drmIsMaster(probe_fd.get())) {
+        retry_pending_ = false;
+        request_remake("kms: DRM master of " + device_path_ + " is free again, but only a new open of the device can have it");
+      } else {
+        backoff_ = std::min(backoff_ * 2, std::chrono::milliseconds(5000));
+        retry_at_ = now + backoff_;
+      }
     } else {
       changed = true;
       needs_modeset_ = true;
@@ -863,36 +974,47 @@ bool KmsPlatform::capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, s
     return false;
   }
   if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) {
-    error = "kms: the last page flip did not complete";
+    error = "kms: the last page flip did not complete within " + std::to_string(kFlipTimeoutMs) + " ms";
     return false;
   }
   const int fd = fd_.get();
   const std::uint32_t width = static_cast<std::uint32_t>(mode_.width), height = static_cast<std::uint32_t>(mode_.height);
+  const std::string what = "the writeback connector on CRTC " + std::to_string(crtc_) + " at " + std::to_string(width) + "x" +
+                           std::to_string(height) + " XRGB8888";
   std::uint32_t handle = 0, pitch = 0, fb = 0;
   std::uint64_t bytes = 0, offset = 0;
   if (drmModeCreateDumbBuffer(fd, width, height, 32, 0, &handle, &pitch, &bytes) != 0) {
-    error = "kms: no dumb buffer for the writeback (" + errno_text(errno) + ")";
+    error = "kms: no dumb buffer for " + what + " (" + errno_text(errno) + ")";
     return false;
   }
   const std::uint32_t handles[4] = {handle}, pitches[4] = {pitch}, offsets[4] = {};
   bool ok = drmModeAddFB2(fd, width, height, DRM_FORMAT_XRGB8888, handles, pitches, offsets, &fb, 0) == 0;
-  if (!ok) error = "kms: drmModeAddFB2 for the writeback buffer failed (" + errno_text(errno) + ")";
+  if (!ok) error = "kms: no framebuffer for " + what + " (drmModeAddFB2: " + errno_text(errno) + ")";
   const std::uint32_t crtc_prop = property_id(fd, writeback_, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID");
   const std::uint32_t fb_prop = property_id(fd, writeback_, DRM_MODE_OBJECT_CONNECTOR, "WRITEBACK_FB_ID");
   const std::uint32_t fence_prop = property_id(fd, writeback_, DRM_MODE_OBJECT_CONNECTOR, "WRITEBACK_OUT_FENCE_PTR");
   std::int32_t fence = -1;
+  bool detached_display = false;
   if (ok) {
-    AtomicPtr request(drmModeAtomicAlloc());
-    drmModeAtomicAddProperty(request.get(), writeback_, crtc_prop, crtc_);
-    drmModeAtomicAddProperty(request.get(), writeback_, fb_prop, fb);
-    drmModeAtomicAddProperty(request.get(), writeback_, fence_prop, reinterpret_cast<std::uintptr_t>(&fence));
-    ok = drmModeAtomicCommit(fd, request.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0;
-    if (!ok) error = "kms: the writeback commit failed (" + errno_text(errno) + ")";
+    // Beside the display where the driver can clone; where it cannot (vkms on 6.1 refuses two
+    // encoders on one CRTC), the display connector is detached for the capture: the CRTC still
+    // composes the same planes, so what the writeback sees is what was being scanned out.
+    for (const bool detach : {false, true}) {
+      AtomicPtr request(drmModeAtomicAlloc());
+      if (detach) drmModeAtomicAddProperty(request.get(), connector_.id, props_.connector_crtc, 0);
+      drmModeAtomicAddProperty(request.get(), writeback_, crtc_prop, crtc_);
+      drmModeAtomicAddProperty(request.get(), writeback_, fb_prop, fb);
+      drmModeAtomicAddProperty(request.get(), writeback_, fence_prop, reinterpret_cast<std::uintptr_t>(&fence));
+      ok = drmModeAtomicCommit(fd, request.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0;
+      detached_display = detach;
+      if (ok || errno != EINVAL) break;
+    }
+    if (!ok) error = "kms: the commit attaching " + what + " was refused (" + errno_text(errno) + "), beside " + connector_.name + " and without it";
   }
   if (ok && fence >= 0) {
     pollfd wait{fence, POLLIN, 0};
     ok = poll(&wait, 1, kFlipTimeoutMs * 5) == 1;
-    if (!ok) error = "kms: the writeback did not complete within " + std::to_string(kFlipTimeoutMs * 5) + " ms";
+    if (!ok) error = "kms: " + what + " did not complete within " + std::to_string(kFlipTimeoutMs * 5) + " ms";
   }
   if (fence >= 0) close(fence);
   if (ok) {
@@ -900,7 +1022,7 @@ bool KmsPlatform::capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, s
     void* mapped = ok ? mmap(nullptr, bytes, PROT_READ, MAP_SHARED, fd, static_cast<off_t>(offset)) : MAP_FAILED;
     if (mapped == MAP_FAILED) {
       ok = false;
-      error = "kms: cannot map the writeback buffer (" + errno_text(errno) + ")";
+      error = "kms: cannot map the buffer of " + what + " (" + errno_text(errno) + ")";
     } else {
       rgba.resize(static_cast<size_t>(width) * height * 4);
       const auto* source = static_cast<const std::uint8_t*>(mapped);
@@ -917,11 +1039,12 @@ bool KmsPlatform::capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, s
       size = {mode_.width, mode_.height};
     }
   }
-  // Detached again, so the next flips commit the primary plane alone.
-  AtomicPtr detach(drmModeAtomicAlloc());
-  drmModeAtomicAddProperty(detach.get(), writeback_, crtc_prop, 0);
-  drmModeAtomicAddProperty(detach.get(), writeback_, fb_prop, 0);
-  drmModeAtomicCommit(fd, detach.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr);
+  // Detached again (and the display attached again), so the next flips commit the primary plane alone.
+  AtomicPtr restore(drmModeAtomicAlloc());
+  drmModeAtomicAddProperty(restore.get(), writeback_, crtc_prop, 0);
+  drmModeAtomicAddProperty(restore.get(), writeback_, fb_prop, 0);
+  if (detached_display) drmModeAtomicAddProperty(restore.get(), connector_.id, props_.connector_crtc, crtc_);
+  if (drmModeAtomicCommit(fd, restore.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) != 0) needs_modeset_ = true;
   if (fb != 0) drmModeRmFB(fd, fb);
   drmModeDestroyDumbBuffer(fd, handle);
   return ok;

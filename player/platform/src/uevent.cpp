@@ -50,6 +50,10 @@ int open_socket() {
   std::memset(&address, 0, sizeof address);
   address.nl_family = AF_NETLINK;
   address.nl_groups = 1;  // the kernel's own broadcast group (udev's is 2)
+  // The socket hears every device's events; room for a burst (a USB hub plugged in) so that a
+  // display's is not the one dropped. Lost events are noticed (ENOBUFS) and the connectors read anyway.
+  const int receive_buffer = 1 << 20;
+  setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &receive_buffer, sizeof receive_buffer);
   if (bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
     const int saved = errno;
     close(fd);

@@ -23,7 +23,18 @@ struct Size {
 // What a platform receives besides frames: window keys, resize and close, a display that comes or
 // goes (kms hotplug, DRM master lost and back). Plain data, so draining events allocates nothing.
 // `warning`: something the player should report once (a refused commit); last_error() says what.
-enum class EventType : std::uint8_t { key_press, key_release, resized, close_requested, display_lost, display_found, warning };
+// `remake`: this platform cannot go on and a new one (and context) would (kms: DRM master can only be
+// had again through a new open of the device); last_error() says why.
+enum class EventType : std::uint8_t {
+  key_press,
+  key_release,
+  resized,
+  close_requested,
+  display_lost,
+  display_found,
+  warning,
+  remake
+};
 
 struct Event {
   EventType type = EventType::close_requested;

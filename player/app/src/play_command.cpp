@@ -697,6 +697,9 @@ void Player::service_camera(double now) {
     if (camera_script_[next_camera_step_++].plugged) mock_camera_->replug();
     else mock_camera_->unplug();
   }
+  // The queue is drained before the stall check: after a long frame (shader compilation at start,
+  // a slow board) a frame waiting there is not a stalled camera.
+  const bool drained = !checking_ && devices_.camera->read_frame(capture_);
   devices_.camera->service();
   const bool lost = devices_.camera->state() != hal::CameraState::Streaming;
   if (lost != camera_lost_) {
@@ -705,7 +708,7 @@ void Player::service_camera(double now) {
     update_status(true);
   }
   if (!checking_) {
-    devices_.camera->read_frame(capture_);  // keep the queue drained between checks
+    if (!drained) devices_.camera->read_frame(capture_);  // keep the queue drained between checks
     return;
   }
   constexpr double kCheckTimeout = 3.0;

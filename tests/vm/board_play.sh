@@ -94,7 +94,7 @@ wait_log "$at" " item=1 .*actions=next " 30
 
 echo "== a USB keyboard: space is the play button (pause)"
 at=$(last_frame)
-python3 "$source/tests/vm/uinput_keys.py" space
+python3 "$source/tests/vm/uinput_keys.py" --reader "$pid" space || fail "the keyboard was not opened by the player"
 wait_log "$at" " state=paused .*actions=pause " 30
 [ "$(levels "$status_led")" = 1 ] || fail "the status LED line is not steadily on while paused"
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """A USB keyboard that types KEY... (board key names: space, n, c, p), made with uinput: the board's
-keyboard buttons for tests in the VM. It appears, waits for the player to find it (inotify on
-/dev/input), presses and releases each key in turn, and disappears.
+keyboard buttons for tests in the VM. It appears, waits until process PID has opened its event node
+(the player finds keyboards through inotify on /dev/input, once per loop), presses and releases each
+key in turn, and disappears.
 
-    uinput_keys.py [--settle SECONDS] KEY...
+    uinput_keys.py --reader PID KEY...
 """
 import fcntl
 import os
@@ -17,14 +18,15 @@ UI_SET_KEYBIT = 0x40045565
 UI_DEV_SETUP = 0x405C5503  # _IOW('U', 3, struct uinput_setup), 92 bytes
 UI_DEV_CREATE = 0x5501
 UI_DEV_DESTROY = 0x5502
+UI_GET_SYSNAME_64 = 0x8040552C  # _IOC(_IOC_READ, 'U', 44, 64)
 EV_SYN, EV_KEY, SYN_REPORT, BUS_USB = 0, 1, 0, 3
 CODES = {"space": 57, "n": 49, "c": 46, "p": 25, "return": 28}
 
 
 def main(argv):
-    settle = 2.0
-    if len(argv) > 1 and argv[0] == "--settle":
-        settle, argv = float(argv[1]), argv[2:]
+    reader = None
+    if len(argv) > 1 and argv[0] == "--reader":
+        reader, argv = int(argv[1]), argv[2:]
     unknown = [k for k in argv if k not in CODES]
     if not argv or unknown:
         sys.exit(f"uinput_keys.py: expected keys among {', '.join(CODES)}, got {' '.join(unknown or ['nothing'])}")
@@ -34,7 +36,23 @@ def main(argv):
         fcntl.ioctl(fd, UI_SET_KEYBIT, code)
     fcntl.ioctl(fd, UI_DEV_SETUP, struct.pack("HHHH80sI", BUS_USB, 0x1D6B, 0x0104, 1, b"vm test keyboard", 0))
     fcntl.ioctl(fd, UI_DEV_CREATE)
-    time.sleep(settle)
+    name = fcntl.ioctl(fd, UI_GET_SYSNAME_64, bytes(64)).split(b"\0")[0].decode()
+    nodes = []
+    for _ in range(600):  # up to 60 s: a sanitizer build under TCG runs a loop in about a second
+        nodes = [f"/dev/input/{n}" for n in os.listdir(f"/sys/devices/virtual/input/{name}") if n.startswith("event")]
+        if nodes:
+            break
+        time.sleep(0.1)
+    if reader is None:
+        time.sleep(2.0)
+    else:
+        for _ in range(600):
+            fds = f"/proc/{reader}/fd"
+            if any(os.path.realpath(os.path.join(fds, f)) in nodes for f in os.listdir(fds)):
+                break
+            time.sleep(0.1)
+        else:
+            sys.exit(f"uinput_keys.py: process {reader} did not open {' '.join(nodes) or name} within 60 s")
 
     def emit(kind, code, value):
         os.write(fd, struct.pack("llHHi", 0, 0, kind, code, value))

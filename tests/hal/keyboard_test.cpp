@@ -15,11 +15,15 @@
 #include <map>
 
 #include "gpio_devices.h"
+#include "button_events.h"
 #include "hal/devices.h"
 #include "keyboards_evdev.h"
 
 namespace hal {
 namespace {
+
+using test::describe;
+using test::wait_events;
 
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
@@ -143,19 +147,6 @@ private:
   libevdev_uinput* ui_ = nullptr;
 };
 
-// Reads button events until `n` have come or a guard against a hang passes.
-std::vector<ButtonEvent> wait_events(Buttons& b, std::size_t n) {
-  std::vector<ButtonEvent> got;
-  const auto end = std::chrono::steady_clock::now() + seconds(10);
-  while (got.size() < n && std::chrono::steady_clock::now() < end) {
-    pollfd p{b.fd(), POLLIN, 0};
-    poll(&p, 1, 50);
-    std::array<ButtonEvent, 8> ev;
-    const std::size_t k = b.read(ev);
-    got.insert(got.end(), ev.begin(), ev.begin() + static_cast<std::ptrdiff_t>(k));
-  }
-  return got;
-}
 
 // Runs the buttons' read loop until `n` keyboards are open (a keyboard is only heard once open).
 bool wait_keyboards(detail::EdgeButtons& b, std::size_t n) {
@@ -169,12 +160,6 @@ bool wait_keyboards(detail::EdgeButtons& b, std::size_t n) {
   return b.keyboards_open() == n;
 }
 
-std::string describe(const std::vector<ButtonEvent>& events, const Buttons& b) {
-  std::string s;
-  for (const ButtonEvent& e : events)
-    s += (s.empty() ? "" : ", ") + std::string(b.name(e.button)) + " " + std::string(to_string(e.action));
-  return "[" + s + "]";
-}
 
 const char* const kKeyboardBoard = R"(
 [buttons]

@@ -13,11 +13,15 @@
 #include "camera_schedule.h"
 #include "colour_bars.h"
 #include "gpio_devices.h"
+#include "button_events.h"
 #include "hal/devices.h"
 #include "hal/mock.h"
 
 namespace hal {
 namespace {
+
+using test::describe;
+using test::wait_events;
 
 using std::chrono::milliseconds;
 
@@ -352,26 +356,7 @@ private:
   std::string chip_, dev_name_;
 };
 
-// Reads button events until `n` have come or `guard` has passed (a guard against a hang, not a
-// timing check).
-std::vector<ButtonEvent> wait_events(Buttons& b, std::size_t n, std::chrono::milliseconds guard = seconds(10)) {
-  std::vector<ButtonEvent> got;
-  const auto end = std::chrono::steady_clock::now() + guard;
-  while (got.size() < n && std::chrono::steady_clock::now() < end) {
-    pollfd p{b.fd(), POLLIN, 0};
-    poll(&p, 1, 50);
-    std::array<ButtonEvent, 8> ev;
-    const std::size_t k = b.read(ev);
-    got.insert(got.end(), ev.begin(), ev.begin() + static_cast<std::ptrdiff_t>(k));
-  }
-  return got;
-}
 
-std::string describe(const std::vector<ButtonEvent>& events, const Buttons& b) {
-  std::string s;
-  for (const ButtonEvent& e : events) s += (s.empty() ? "" : ", ") + std::string(b.name(e.button)) + " " + std::string(to_string(e.action));
-  return "[" + s + "]";
-}
 
 TEST(Hardware, GpioSimButtons) {
   if (const std::string why = gpio_sim_skip_reason(); !why.empty()) GTEST_SKIP() << why;

@@ -47,7 +47,8 @@ struct SsaoParams {
   ivec4 lods_0_3;          // depth-chain level each radius reads (large radii read coarse levels)
   ivec4 config;            // x: level of radius 4, y: AO resolution shift (0 full, 1 half), z: full width, w: full height
   ivec4 radius_range;            // x: first radius used this frame, y: one past the last (radii skipped per frame);
-                                 // z: 1 runs the estimator on background pixels too (only to measure the skip)
+                                 // z: 1 runs the estimator on background pixels too (only to measure the skip);
+                                 // w: horizon taps on each side of a slice (slices = samples / (2 w))
   vec4 kernel[SSAO_MAX_SAMPLES];                             // see ssao::make_kernel
   vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn
 };

@@ -162,13 +162,15 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
                               highp float turn_angle, highp float radius, int level) {
   highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
   if (radius_pixels < 1.0) return 0.0;  // the radius falls inside this pixel: nothing to find
-  int slices = max(1, ssao.counts.x / 8);
-  int steps = max(1, ssao.counts.x / (2 * slices));
+  int steps = ssao.radius_range.w;
+  int slices = max(1, ssao.counts.x / (2 * steps));
   highp vec3 view = normalize(-position);
   highp float visibility = 0.0, open = 0.0;
   for (int slice = 0; slice < slices; ++slice) {
     highp vec2 jitter = ssao.kernel[slice].xy;
-    highp float phi = kPi * (float(slice) + jitter.x) / float(slices) + turn_angle;
+    // Slices repeat every pi / slices: the pixel's turn (a full circle over the tile) is spread over
+    // that period, or the 4x4 tile would hold as few as two distinct slice directions.
+    highp float phi = (kPi * (float(slice) + jitter.x) + 0.5 * turn_angle) / float(slices);
     highp vec2 direction = vec2(cos(phi), sin(phi));
     highp vec3 direction_view = vec3(direction, 0.0);
     highp vec3 ortho = direction_view - dot(direction_view, view) * view;

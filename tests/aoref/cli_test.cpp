@@ -131,6 +131,18 @@ TEST(Cli, WritesReferenceAndNoiseAndComparesOnASyntheticDump) {
   EXPECT_NE(r.output.find("noise: binomial standard error per pixel max"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("MAE"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("SSIM"), std::string::npos) << r.output;
+  const fs::path map = dir / "error.png";
+  const CommandResult mapped = run(kAoref + " --dump " + dir.string() + " --rays 64 -o " + out.string() + " --compare " +
+                                   (dir / "ao_raw.exr").string() + " --error-map " + map.string() + " --error-scale 0.5");
+  ASSERT_EQ(mapped.status, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("wrote " + map.string() + " (estimate - reference, +-0.5 in full colour)"), std::string::npos)
+      << mapped.output;
+  Image map_image;
+  std::string map_error;
+  ASSERT_TRUE(read_image(map.string(), map_image, map_error)) << map_error;
+  EXPECT_EQ(map_image.width, 8);
+  EXPECT_EQ(map_image.height, 8);
+  EXPECT_EQ(map_image.channels, 3);
   Image image;
   std::string error;
   ASSERT_TRUE(read_image(out.string(), image, error)) << error;
@@ -158,6 +170,7 @@ TEST(Cli, FailsCleanlyOnBadInput) {
       {"--dump " + dir.string() + " --reference cone" + out, "--reference"},
       {"--dump " + dir.string() + " --compare " + (dir / "nope.exr").string() + out, "nope.exr"},
       {"--dump " + dir.string() + " -o /nonexistent-folder/x.exr", "/nonexistent-folder/x.exr"},
+      {"--dump " + dir.string() + " --error-map " + (dir / "e.png").string() + out, "--error-map: needs --compare"},
   };
   for (const Case& c : cases) {
     const CommandResult r = run(kAoref + " " + c.arguments);

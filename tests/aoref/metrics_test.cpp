@@ -1,4 +1,5 @@
 // The error metrics on synthetic images with known answers.
+#include "aoref/image.h"
 #include "aoref/metrics.h"
 
 #include <gtest/gtest.h>
@@ -173,6 +174,23 @@ TEST(Metrics, MatchingByReprojectionFindsTheSamePointInThePreviousFrame) {
   Image occluded = before;
   for (size_t i = 0; i < occluded.pixel_count(); ++i) occluded.at(i, 2) = -5.0f;
   for (int64_t m : match_previous(now, occluded, view_projection, glm::dvec3(0.0))) EXPECT_EQ(m, -1);
+}
+
+// The error map: white where the estimate is right, red where it is darker (more AO), blue where
+// lighter, full colour at the scale and beyond, background black.
+TEST(ErrorMap, ColoursTheSignedErrorAndLeavesTheBackgroundBlack) {
+  Image depth(5, 1, 1, 2.0f), reference(5, 1, 1, 0.3f), estimate(5, 1, 1);
+  depth.at(4) = 0.0f;
+  const float values[5] = {0.3f, 0.35f, 0.1f, 0.9f, 0.5f};
+  for (size_t i = 0; i < 5; ++i) estimate.at(i) = values[i];
+  const std::vector<unsigned char> rgb = error_map(estimate, reference, depth, 0.1f);
+  ASSERT_EQ(rgb.size(), 15u);
+  const std::vector<unsigned char> expected = {255, 255, 255,  // no error
+                                               255, 128, 128,  // +0.05: half red
+                                               0,   0,   255,  // -0.2: beyond the scale, full blue
+                                               255, 0,   0,    // +0.6: full red
+                                               0,   0,   0};   // background
+  for (size_t i = 0; i < rgb.size(); ++i) EXPECT_NEAR(rgb[i], expected[i], 1) << "byte " << i;
 }
 
 }  // namespace

@@ -322,12 +322,12 @@ struct AnalyticCorner {
     const glm::dvec3 position = ray(ndc_of(pixel)) * d, view_direction = glm::normalize(-position);
     const double radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0) return 0.0;
-    const int slices = std::max(1, p.counts.x / 8), steps = std::max(1, p.counts.x / (2 * slices));
+    const int steps = p.radius_range.w, slices = std::max(1, p.counts.x / (2 * steps));
     const double pi = std::acos(-1.0), turn_angle = std::atan2(turn(pixel).y, turn(pixel).x);
     double occluded = 0.0, open = 0.0;
     for (int slice = 0; slice < slices; ++slice) {
       const glm::dvec2 jitter(p.kernel[slice]);
-      const double phi = pi * (slice + jitter.x) / slices + turn_angle;
+      const double phi = (pi * (slice + jitter.x) + 0.5 * turn_angle) / slices;
       const glm::dvec2 direction(std::cos(phi), std::sin(phi));
       // The slice plane holds the view direction and the screen direction; the normal projected into it
       // is at angle gamma from the view direction, towards the positive side.

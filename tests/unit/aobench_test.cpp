@@ -218,6 +218,7 @@ TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
       {"estimator", {"sphere", "hemisphere", "horizon"}, {"ray", "Sphere"}, "sphere|hemisphere|horizon"},
       {"precision", {"highp", "mediump"}, {"lowp", "fp16"}, "highp|mediump"},
       {"samples", {"1", "64", "32"}, {"0", "65", "-1", "1.5", "8x", ""}, "1..64"},
+      {"steps", {"1", "32", "8"}, {"0", "33", "-1", "4.5", ""}, "1..32"},
       {"radii", {"1", "5"}, {"0", "6", "2.0"}, "1..5"},
       {"radius", {"0", "2.5", "1e-3"}, {"-0.001", "-1", "inf", "nan", "1e", "x"}, "a number >= 0"},
       {"pattern", {"random", "jittered", "latin", "poisson"}, {"halton"}, "random|jittered|latin|poisson"},

@@ -229,7 +229,7 @@ TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
   EXPECT_EQ(params.radius_4_bias.w, static_cast<float>(behind) / static_cast<float>(params.counts.x));
   settings.skip_radii = false;
   ssao::update_for_frame(params, settings, view);
-  EXPECT_EQ(params.radius_range, glm::ivec4(0, 5, 0, 0));
+  EXPECT_EQ(params.radius_range, glm::ivec4(0, 5, 0, ssao::horizon_steps(settings)));
   EXPECT_EQ(params.radius_4_bias.w, 0.0f);
 }
 
@@ -340,10 +340,11 @@ TEST(Reference, DenoiseAlsoStopsAtCreasesWhereDepthRunsOn) {
 namespace {
 
 // Temporal accumulation turns the samples frame by frame. Frame 0 is the fixed tables; the turns of
-// the first N frames fill the gap between neighbouring tile angles evenly (R2: the largest gap
-// between sorted shares stays within a small multiple of 1/N), every entry of the tile moves by the
-// same angle, and the horizon estimator's step jitter moves too, staying in [0, 1).
-TEST(Frame, AdvancingTurnsTheTileEvenlyOverFrames) {
+// the first N frames fill the whole circle evenly, so that every pixel sees every direction, not
+// only its own tile angle's neighbourhood (R2: the largest gap between sorted shares stays within a
+// small multiple of 1/N), every entry of the tile moves by the same angle, and the horizon
+// estimator's step jitter moves too, staying in [0, 1).
+TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
   for (ssao::Estimator estimator : ssao::kEstimators) {
     ssao::AoSettings settings;
     settings.estimator = estimator;
@@ -355,7 +356,7 @@ TEST(Frame, AdvancingTurnsTheTileEvenlyOverFrames) {
       EXPECT_NEAR(params.rotation[i].y, base.rotation[i].y, 1e-6f);
     }
     for (int i = 0; i < base.counts.x; ++i) EXPECT_NEAR(params.kernel[i].y, base.kernel[i].y, 1e-6f);
-    const double gap = 2.0 * 3.14159265358979 / (SSAO_ROTATION_TILE * SSAO_ROTATION_TILE);
+    const double gap = 2.0 * 3.14159265358979;
     std::vector<double> shares;
     for (unsigned frame = 0; frame < 64; ++frame) {
       ssao::advance_frame(params, settings, frame);

@@ -76,6 +76,12 @@ int main(int argc, char** argv) try {
   app.add_option("--compare", compare_path,
                  "An AO EXR of the dump's size (e.g. DIR/ao_blurred.exr): print MAE, RMSE, bias, SSIM and the MAE "
                  "within 3 px of depth edges over object pixels");
+  std::string error_map_path;
+  float error_scale = 0.1f;
+  app.add_option("--error-map", error_map_path,
+                 "With --compare: a PNG of estimate - reference per object pixel (red: estimate darker, blue: lighter, "
+                 "full colour at --error-scale, white: no error)");
+  app.add_option("--error-scale", error_scale, "The error that --error-map shows in full colour")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "No progress on stderr");
   CLI11_PARSE(app, argc, argv);
 
@@ -83,6 +89,7 @@ int main(int argc, char** argv) try {
   if (settings.radius > 0.0 && settings.reference != aoref::Reference::near_field)
     return die("--radius: applies to --reference near-field only; the sphere reference uses the radii of camera.json");
 
+  if (!error_map_path.empty() && compare_path.empty()) return die("--error-map: needs --compare (the estimate to map)");
   aoref::Dump dump;
   std::string error;
   if (!aoref::read_dump(dump_dir, dump, error)) return die(error);
@@ -132,6 +139,12 @@ int main(int argc, char** argv) try {
     const aoref::Metrics m = aoref::compare(estimate, result.ao, dump.depth);
     std::printf("%s vs reference over %zu object pixels: MAE %.4f  RMSE %.4f  bias %+.4f  SSIM %.4f  edge MAE %.4f (%zu px within 3 px of depth edges)\n",
                 compare_path.c_str(), m.pixels, m.mae, m.rmse, m.bias, m.ssim, m.edge_mae, m.edge_pixels);
+    if (!error_map_path.empty()) {
+      if (!aoref::write_rgb8(error_map_path, estimate.width, estimate.height,
+                             aoref::error_map(estimate, result.ao, dump.depth, error_scale), error))
+        return die(error);
+      std::printf("wrote %s (estimate - reference, +-%g in full colour)\n", error_map_path.c_str(), static_cast<double>(error_scale));
+    }
   }
   return 0;
 } catch (const std::exception& e) {

@@ -214,7 +214,8 @@ bool ao_passes(const Frame& frame) {
   if (view.module) {
     // Algorithm 2 maps every sample itself and reads the full-resolution depth: no depth chain, and
     // no radius is skipped by a screen-space size that has no meaning here.
-    params.radius_range = glm::ivec4(0, params.counts.y, settings.ao_settings.skip_background ? 0 : 1, 0);
+    params.radius_range.x = 0;
+    params.radius_range.y = params.counts.y;
     params.lods_0_3 = glm::ivec4(0);
     params.config.x = 0;
     params.radius_4_bias.w = 0.0f;

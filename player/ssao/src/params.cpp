@@ -13,6 +13,15 @@ std::optional<Blur> parse_blur(std::string_view text) { return names::parse<Blur
 std::string_view name(Precision precision) { return names::name_of<Precision>(kPrecisionNames, precision); }
 std::optional<Precision> parse_precision(std::string_view text) { return names::parse<Precision>(kPrecisionNames, text); }
 
+int horizon_steps(const AoSettings& settings) {
+  const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);
+  return std::clamp(settings.steps, 1, std::max(1, samples / 2));
+}
+
+int horizon_slices(const AoSettings& settings) {
+  return std::max(1, std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES) / (2 * horizon_steps(settings)));
+}
+
 shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
   shared_layout::SsaoParams params{};
   const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);
@@ -23,7 +32,7 @@ shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float bas
   const int shift = settings.half_resolution ? 1 : 0;
   params.counts = glm::ivec4(samples, radii, (width + shift) >> shift, (height + shift) >> shift);
   params.config = glm::ivec4(0, shift, width, height);
-  params.radius_range = glm::ivec4(0, radii, settings.skip_background ? 0 : 1, 0);
+  params.radius_range = glm::ivec4(0, radii, settings.skip_background ? 0 : 1, horizon_steps(settings));
   const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
   for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
   const std::span<const float> angles = rotation_angles();
@@ -39,11 +48,11 @@ void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings
   const double n = static_cast<double>(frame % (1u << 20));
   const double turn_share = std::fmod(n / kPlastic, 1.0);
   const double step_share = std::fmod(n / (kPlastic * kPlastic), 1.0);
+  // A whole turn, not one gap of the tile: every pixel must see every direction over the frames, or
+  // its average keeps the tile's pattern (the AO of a still camera stays dithered without a blur).
   const std::span<const float> angles = rotation_angles();
-  // The tile's angles are (k + 0.5) / 16 of a full turn: a frame moves them by up to one gap.
-  const double gap = 2.0 * std::numbers::pi / static_cast<double>(angles.size());
   for (size_t i = 0; i < angles.size(); ++i) {
-    const double angle = angles[i] + turn_share * gap;
+    const double angle = angles[i] + turn_share * 2.0 * std::numbers::pi;
     params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.0f, 0.0f);
   }
   if (settings.estimator != Estimator::horizon) return;
@@ -85,7 +94,7 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
       params.radius_4_bias.w = static_cast<float>(behind) / static_cast<float>(params.counts.x);
     }
   }
-  params.radius_range = glm::ivec4(first, end, settings.skip_background ? 0 : 1, 0);
+  params.radius_range = glm::ivec4(first, end, settings.skip_background ? 0 : 1, horizon_steps(settings));
   // A radius spanning 2^(k+4) pixels at the scene's centre reads level k: about 16 depth texels
   // across the radius, which is all the point samples can tell apart.
   const int max_level = depth_chain_levels(params.config.z, params.config.w) - 1;

@@ -79,13 +79,13 @@ struct Frame {
     const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
     const float radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0f) return 0.0f;
-    const int slices = std::max(1, p.counts.x / 8);
-    const int steps = std::max(1, p.counts.x / (2 * slices));
+    const int steps = p.radius_range.w;
+    const int slices = std::max(1, p.counts.x / (2 * steps));
     const glm::vec3 view = glm::normalize(-position);
     float visibility = 0.0f, open = 0.0f;
     for (int slice = 0; slice < slices; ++slice) {
       const glm::vec2 jitter(p.kernel[slice]);
-      const float phi = kPi * (static_cast<float>(slice) + jitter.x) / static_cast<float>(slices) + turn_angle;
+      const float phi = (kPi * (static_cast<float>(slice) + jitter.x) + 0.5f * turn_angle) / static_cast<float>(slices);
       const glm::vec2 direction(std::cos(phi), std::sin(phi));
       const glm::vec3 direction_view(direction, 0.0f);
       const glm::vec3 ortho = direction_view - glm::dot(direction_view, view) * view;

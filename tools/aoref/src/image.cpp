@@ -2,6 +2,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace aoref {
 
 Image::Image(int w, int h, int c, float fill)
@@ -50,6 +53,33 @@ bool write_exr(const std::string& path, const Image& image, const std::vector<st
     return false;
   }
   return true;
+}
+
+bool write_rgb8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb, std::string& error) {
+  auto output = OIIO::ImageOutput::create(path);
+  if (!output) {
+    error = path + ": cannot create a writer for this file type (" + OIIO::geterror() + ")";
+    return false;
+  }
+  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !output->close()) {
+    error = path + ": cannot write (" + output->geterror() + ")";
+    return false;
+  }
+  return true;
+}
+
+std::vector<unsigned char> error_map(const Image& estimate, const Image& reference, const Image& depth, float full_scale) {
+  std::vector<unsigned char> rgb(depth.pixel_count() * 3, 0);
+  for (size_t i = 0; i < depth.pixel_count(); ++i) {
+    if (depth.at(i) <= 0.0f) continue;
+    const float e = std::clamp((estimate.at(i) - reference.at(i)) / full_scale, -1.0f, 1.0f);
+    const auto fade = static_cast<unsigned char>(std::lround(255.0f * (1.0f - std::abs(e))));
+    rgb[i * 3 + 0] = e < 0.0f ? fade : 255;
+    rgb[i * 3 + 1] = fade;
+    rgb[i * 3 + 2] = e > 0.0f ? fade : 255;
+  }
+  return rgb;
 }
 
 }  // namespace aoref

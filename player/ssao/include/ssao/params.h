@@ -22,7 +22,10 @@ std::optional<Precision> parse_precision(std::string_view text);
 struct AoSettings {
   Estimator estimator = Estimator::horizon;
   Precision precision = Precision::highp;
-  int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / 8)
+  int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
+  // Horizon: taps on each side of a slice, 1..32 (at most samples / 2). The horizon is the highest of
+  // the taps, so too few of them miss it and the AO comes out too light (README, "The bias").
+  int steps = 4;
   int radii = 1;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
   float bias = 0.03f;                 // depth bias as a fraction of each radius
@@ -51,6 +54,10 @@ struct BlurSettings {
   float depth_tolerance = 0.05f;      // bilateral, denoise: depth difference, relative to depth, that halves trust
   float normal_power = 8.0f;          // denoise: a tap's weight times cos(angle between normals)^power
 };
+
+// The horizon estimator's split of `samples` taps: steps on each side of a slice, and slices.
+int horizon_steps(const AoSettings& settings);
+int horizon_slices(const AoSettings& settings);
 
 // The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
 // the full resolution (the AO resolution follows from settings.half_resolution).

@@ -24,4 +24,12 @@ bool read_image(const std::string& path, Image& out, std::string& error);
 bool write_exr(const std::string& path, const Image& image, const std::vector<std::string>& channel_names,
                std::string& error);
 
+// Writes 8-bit RGB pixels (row 0 at the top) in the format the name's extension says (e.g. PNG).
+bool write_rgb8(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb, std::string& error);
+
+// Where and by how much an estimate is off: each object pixel (depth > 0) shows estimate -
+// reference, red where the estimate is darker (too much AO), blue where it is lighter, full at
+// +-full_scale, white at 0; background black.
+std::vector<unsigned char> error_map(const Image& estimate, const Image& reference, const Image& depth, float full_scale);
+
 }  // namespace aoref

@@ -187,20 +187,28 @@ TEST(Reference, DepthChainKeepsObjectDepthsAndHalvesTheSize) {
   EXPECT_FLOAT_EQ(chain.at({0, 0}, 2), 3.0f);
 }
 
-TEST(Reference, UpsamplingTakesTheLowResolutionTexelOfTheClosestDepth) {
-  // Low resolution 2x1: left texel AO 1 at depth 0.2, right texel AO 0 at depth 0.6. A full-resolution
-  // pixel at depth 0.6 inside the left block must take the right texel's AO.
+TEST(Reference, UpsamplingInterpolatesAlongASurfaceAndNotAcrossAnEdge) {
+  // Low resolution 3x1: texel 0 AO 1 and texel 1 AO 0.5 on one surface (depths 0.20 and 0.21, 5%
+  // apart), texel 2 AO 0 at depth 0.6. Texel i shaded full-resolution pixel 2i.
   shared_layout::UpsampleParams params{};
-  params.config = glm::ivec4(4, 2, 2, 1);
+  params.config = glm::ivec4(6, 2, 3, 1);
   params.depth = glm::vec4(1.0f, 0, 0, 0);
-  const std::vector<ssao::AoTexel> low = {{1.0f, 0.2f}, {0.0f, 0.6f}};
-  const std::vector<float> depth = {0.2f, 0.6f, 0.6f, 0.6f, 0.2f, 0.2f, 0.6f, 0.0f};
+  const std::vector<ssao::AoTexel> low = {{1.0f, 0.2f}, {0.5f, 0.21f}, {0.0f, 0.6f}};
+  const std::vector<float> depth = {0.2f, 0.205f, 0.21f, 0.21f, 0.6f, 0.6f,   // row 0
+                                    0.2f, 0.6f,   0.21f, 0.6f,  0.3f, 0.0f};  // row 1
   const auto full = ssao::reference_upsample(low, depth, params);
-  EXPECT_EQ(full[0].x, 1.0f);
-  EXPECT_EQ(full[1].x, 0.0f);
-  EXPECT_EQ(full[4].x, 1.0f);
-  EXPECT_EQ(full[7].x, 0.0f);  // background
-  EXPECT_EQ(full[7].y, 0.0f);
+  EXPECT_EQ(full[0].x, 1.0f);    // on its own texel
+  EXPECT_EQ(full[1].x, 0.75f);   // halfway along the surface: the mean of both texels
+  EXPECT_EQ(full[2].x, 0.5f);
+  EXPECT_EQ(full[3].x, 0.5f);    // beside an edge: only the texel on its own surface
+  EXPECT_EQ(full[4].x, 0.0f);
+  EXPECT_EQ(full[5].x, 0.0f);    // the image's last column reads the last texel
+  EXPECT_EQ(full[6].x, 1.0f);    // row 1 reads row 0 (the only row) from below
+  EXPECT_EQ(full[7].x, 0.5f);    // depth 0.6 between texels 0 and 1: neither is its surface; 1 is closer
+  EXPECT_EQ(full[9].x, 0.0f);    // depth 0.6 between texels 1 and 2: texel 2's surface alone
+  EXPECT_EQ(full[10].x, 0.0f);   // depth 0.3 on texel 2 (0.6): not its surface, but the only candidate
+  EXPECT_EQ(full[11].x, 0.0f);   // background
+  EXPECT_EQ(full[11].y, 0.0f);
 }
 
 TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {

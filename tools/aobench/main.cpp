@@ -30,7 +30,7 @@
 namespace {
 
 // The settings columns of the CSV, in the codec's names.
-constexpr const char* kCsvSettings[] = {"estimator", "samples", "radii", "pattern", "blur", "resolution", "depth-chain",
+constexpr const char* kCsvSettings[] = {"estimator", "samples", "steps", "radii", "pattern", "blur", "resolution", "depth-chain",
                                         "skip-radii", "skip-background", "untextured-variant", "reuse-ao", "temporal", "prepass"};
 
 namespace fs = std::filesystem;

@@ -11,6 +11,7 @@ namespace ssao {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
+constexpr float kUpsampleDepthTolerance = 0.05f;  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
 
@@ -257,11 +258,14 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
     for (int x = 0; x < full.x; ++x) {
       const float depth = linear_depth[index({x, y}, full.x)] * params.depth.x;
       if (depth <= 0.0f) continue;
-      float best_difference = 1e30f, best_ao = 0.0f;
-      const glm::ivec2 toward((x & 1) == 1 ? 1 : -1, (y & 1) == 1 ? 1 : -1);
+      // upsample.glsl: bilinear among the texels on the pixel's own surface, else the closest in depth.
+      const glm::vec2 f(static_cast<float>(x & 1) * 0.5f, static_cast<float>(y & 1) * 0.5f);
+      float best_difference = 1e30f, best_ao = 0.0f, weight_sum = 0.0f, ao_sum = 0.0f;
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
-          const glm::ivec2 texel = glm::clamp(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy) * toward, glm::ivec2(0), small - 1);
+          const float weight = (dx == 0 ? 1.0f - f.x : f.x) * (dy == 0 ? 1.0f - f.y : f.y);
+          if (weight <= 0.0f) continue;
+          const glm::ivec2 texel = glm::min(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy), small - 1);
           const AoTexel value = low[index(texel, small.x)];
           if (value.y <= 0.0f) continue;
           const float difference = std::abs(value.y - depth);
@@ -269,8 +273,13 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
             best_difference = difference;
             best_ao = value.x;
           }
+          if (difference <= kUpsampleDepthTolerance * depth) {
+            weight_sum += weight;
+            ao_sum += weight * value.x;
+          }
         }
-      out[index({x, y}, full.x)] = AoTexel(best_ao, to_half(depth));
+      const float ao = weight_sum > 0.0f ? to_half(ao_sum / weight_sum) : best_ao;
+      out[index({x, y}, full.x)] = AoTexel(ao, to_half(depth));
     }
   return out;
 }

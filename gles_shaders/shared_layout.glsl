@@ -56,8 +56,7 @@ struct SsaoParams {
 struct BlurParams {
   vec4 weights[BLUR_MAX_RADIUS + 1];  // x: Gaussian weight at distance i
   ivec4 config;                       // x: radius, y: direction (0 horizontal, 1 vertical), z: width, w: height
-  vec4 bilateral;                     // x: depth tolerance relative to the centre depth;
-                                      // y: denoise: the power on the cosine between normals
+  vec4 bilateral;                     // x: depth tolerance relative to the centre depth
   ivec4 source;                       // x: AO resolution shift (denoise reads normals at full resolution)
 };
 

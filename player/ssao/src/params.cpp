@@ -114,7 +114,7 @@ shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int dir
   for (int i = 0; i <= radius; ++i)
     params.weights[i].x = std::exp(-static_cast<float>(i * i) / (2.0f * settings.sigma * settings.sigma));
   params.config = glm::ivec4(radius, direction, width, height);
-  params.bilateral = glm::vec4(settings.depth_tolerance, settings.normal_power, 0.0f, 0.0f);
+  params.bilateral = glm::vec4(settings.depth_tolerance, 0.0f, 0.0f, 0.0f);
   params.source = glm::ivec4(shift, 0, 0, 0);
   return params;
 }

@@ -238,8 +238,12 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
             const float difference = (value.y - centre.y) / tolerance;
             weight *= value.y > 0.0f ? std::exp(-difference * difference) : 0.0f;
           }
-          if (denoise)
-            weight *= std::pow(std::max(glm::dot(normal_at(pixel), normal_at(tap)), 0.0f), params.bilateral.y);
+          if (denoise) {
+            float agreement = std::max(glm::dot(normal_at(pixel), normal_at(tap)), 0.0f);
+            agreement *= agreement;
+            agreement *= agreement;
+            weight *= agreement * agreement;  // blur.comp: cos^8 by three squarings
+          }
           sum += value.x * weight;
           total += weight;
         }

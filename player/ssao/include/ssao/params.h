@@ -52,7 +52,6 @@ struct BlurSettings {
   int radius = 4;                     // taps each side, 1..BLUR_MAX_RADIUS
   float sigma = 2.0f;                 // Gaussian sigma in pixels
   float depth_tolerance = 0.05f;      // bilateral, denoise: depth difference, relative to depth, that halves trust
-  float normal_power = 8.0f;          // denoise: a tap's weight times cos(angle between normals)^power
 };
 
 // The horizon estimator's split of `samples` taps: steps on each side of a slice, and slices.

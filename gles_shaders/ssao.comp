@@ -158,6 +158,9 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 // visibility: one slice's open arc integrates to 1 only on average over slice angles, so with few
 // slices 1 - mean visibility swings below 0 on tilted open faces and clamping that biased AO upwards
 // (+0.09 with one slice, +0.03 with two, against the near-field reference).
+// Taps from 1 to HORIZON_FADE_END radii away count less the farther they are (measured: README).
+#define HORIZON_FADE_END 2.5
+
 highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp float depth,
                               highp float turn_angle, highp float radius, int level) {
   highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
@@ -180,7 +183,8 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     if (projected_length < 1e-6) continue;  // the normal is the slice's axis: no arc to integrate
     highp float cos_normal = clamp(dot(projected_normal, view) / projected_length, -1.0, 1.0);
     highp float gamma = sign(dot(ortho, projected_normal)) * acos(cos_normal);
-    highp float horizon_plus = cos(gamma + 0.5 * kPi), horizon_minus = cos(gamma - 0.5 * kPi);
+    highp float tangent_plus = cos(gamma + 0.5 * kPi), tangent_minus = cos(gamma - 0.5 * kPi);
+    highp float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
     for (int step_index = 0; step_index < steps; ++step_index) {
       highp float distance_pixels = max((float(step_index) + jitter.y) / float(steps) * radius_pixels, float(step_index + 1));
       for (int side = 0; side < 2; ++side) {
@@ -190,11 +194,16 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
         highp float sample_depth = depth_at(texel, level);
         if (sample_depth <= 0.0) continue;
         // Per tap, everything is relative to the shaded point and in units of the radius, so at
-        // mediump the offsets keep their precision and their squares cannot overflow within the radius.
+        // mediump the offsets keep their precision and their squares cannot overflow within the reach.
         SAMPLE_PRECISION vec3 delta = (view_position(texel, sample_depth) - position) / radius;
         SAMPLE_PRECISION float distance = length(delta);
-        if (distance >= 1.0 || distance <= 0.0) continue;
+        if (distance >= HORIZON_FADE_END || distance <= 0.0) continue;
         SAMPLE_PRECISION float horizon = dot(delta, view) / distance;
+        // A surface seen beyond the radius is the front of what may reach within it (the hidden
+        // underside of a ball above the floor): it counts, fading to nothing at HORIZON_FADE_END
+        // radii. Cutting it off at the radius made the AO too light (README, "The bias").
+        if (distance > 1.0)
+          horizon = mix(side == 0 ? tangent_plus : tangent_minus, horizon, (HORIZON_FADE_END - distance) / (HORIZON_FADE_END - 1.0));
         if (side == 0) horizon_plus = max(horizon_plus, horizon);
         else horizon_minus = max(horizon_minus, horizon);
       }

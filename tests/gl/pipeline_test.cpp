@@ -355,9 +355,13 @@ struct AnalyticCorner {
           if (tap_depth <= 0.0) continue;
           const glm::dvec3 delta = ray(ndc_of(texel)) * tap_depth - position;
           const double distance = glm::length(delta);
-          if (std::abs(distance - radius) < 1e-4 * radius) return std::nullopt;
-          if (distance >= radius || distance <= 0.0) continue;
-          const double angle = std::acos(std::clamp(glm::dot(delta, view_direction) / distance, -1.0, 1.0));
+          // Beyond the radius a tap's horizon fades towards the tangent, to nothing at 2.5 radii.
+          constexpr double kFadeEnd = 2.5;
+          if (distance >= kFadeEnd * radius || distance <= 0.0) continue;
+          const double tangent = std::cos(side == 0 ? gamma + pi / 2 : gamma - pi / 2);
+          const double weight = std::min(1.0, (kFadeEnd * radius - distance) / ((kFadeEnd - 1.0) * radius));
+          const double cosine = tangent + (glm::dot(delta, view_direction) / distance - tangent) * weight;
+          const double angle = std::acos(std::clamp(cosine, -1.0, 1.0));
           high[side] = side == 0 ? std::min(high[side], angle) : std::max(high[side], -angle);
         }
       }

@@ -11,7 +11,8 @@ namespace ssao {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr float kUpsampleDepthTolerance = 0.05f;  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
+constexpr float kUpsampleDepthTolerance = 0.05f;
+constexpr float kHorizonFadeEnd = 2.5f;  // ssao.comp's HORIZON_FADE_END  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
 
@@ -97,7 +98,8 @@ struct Frame {
       const float cos_normal = std::clamp(glm::dot(projected_normal, view) / projected_length, -1.0f, 1.0f);
       const float side_sign = glm::dot(ortho, projected_normal);
       const float gamma = (side_sign > 0.0f ? 1.0f : side_sign < 0.0f ? -1.0f : 0.0f) * std::acos(cos_normal);
-      float horizon_plus = std::cos(gamma + 0.5f * kPi), horizon_minus = std::cos(gamma - 0.5f * kPi);
+      const float tangent_plus = std::cos(gamma + 0.5f * kPi), tangent_minus = std::cos(gamma - 0.5f * kPi);
+      float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
       for (int step = 0; step < steps; ++step) {
         const float distance_pixels = std::max((static_cast<float>(step) + jitter.y) / static_cast<float>(steps) * radius_pixels,
                                                static_cast<float>(step + 1));
@@ -111,8 +113,12 @@ struct Frame {
           glm::vec3 delta = (view_position(texel, sample_depth) - position) / radius;
           for (int c = 0; c < 3; ++c) delta[c] = sample_precision(delta[c]);
           const float distance = sample_precision(glm::length(delta));
-          if (distance >= 1.0f || distance <= 0.0f) continue;
-          const float horizon = sample_precision(glm::dot(delta, view) / distance);
+          if (distance >= kHorizonFadeEnd || distance <= 0.0f) continue;
+          float horizon = sample_precision(glm::dot(delta, view) / distance);
+          if (distance > 1.0f) {
+            const float low = side == 0 ? tangent_plus : tangent_minus;
+            horizon = sample_precision(low + (horizon - low) * ((kHorizonFadeEnd - distance) / (kHorizonFadeEnd - 1.0f)));
+          }
           if (side == 0) horizon_plus = std::max(horizon_plus, horizon);
           else horizon_minus = std::max(horizon_minus, horizon);
         }

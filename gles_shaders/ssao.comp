@@ -152,15 +152,16 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
   return (cos_normal + 2.0 * h * sin(gamma) - cos(2.0 * h - gamma)) * 0.25;
 }
 
-// GTAO for one radius: per slice, the highest horizon on each side within the radius, then the
+// Taps from 1 to HORIZON_FADE_END radii away count less the farther they are (the sweep that chose
+// 2.5 is in the README, "The bias").
+#define HORIZON_FADE_END 2.5
+
+// GTAO for one radius: per slice, the highest horizon on each side (fading beyond the radius), then the
 // visible arc integrated with the cosine to the normal projected into the slice.
 // The result is the occluded share of the slices' open arcs (a ratio), not 1 minus their mean
 // visibility: one slice's open arc integrates to 1 only on average over slice angles, so with few
 // slices 1 - mean visibility swings below 0 on tilted open faces and clamping that biased AO upwards
 // (+0.09 with one slice, +0.03 with two, against the near-field reference).
-// Taps from 1 to HORIZON_FADE_END radii away count less the farther they are (measured: README).
-#define HORIZON_FADE_END 2.5
-
 highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp float depth,
                               highp float turn_angle, highp float radius, int level) {
   highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;

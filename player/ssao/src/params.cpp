@@ -18,10 +18,6 @@ int horizon_steps(const AoSettings& settings) {
   return std::clamp(settings.steps, 1, std::max(1, samples / 2));
 }
 
-int horizon_slices(const AoSettings& settings) {
-  return std::max(1, std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES) / (2 * horizon_steps(settings)));
-}
-
 shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
   shared_layout::SsaoParams params{};
   const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);

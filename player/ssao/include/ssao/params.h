@@ -54,9 +54,9 @@ struct BlurSettings {
   float depth_tolerance = 0.05f;      // bilateral, denoise: depth difference, relative to depth, that halves trust
 };
 
-// The horizon estimator's split of `samples` taps: steps on each side of a slice, and slices.
+// The horizon estimator's taps on each side of a slice (`steps`, at most samples / 2); ssao.comp
+// makes samples / (2 x steps) slices of them.
 int horizon_steps(const AoSettings& settings);
-int horizon_slices(const AoSettings& settings);
 
 // The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
 // the full resolution (the AO resolution follows from settings.half_resolution).

@@ -22,11 +22,14 @@ highp float upsampled_ao(highp sampler2D ao, ivec2 ao_size, ivec2 pixel, highp f
   highp float weight_sum = 0.0, ao_sum = 0.0;
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) {
-      highp float weight = (dx == 0 ? 1.0 - f.x : f.x) * (dy == 0 ? 1.0 - f.y : f.y);
-      if (weight <= 0.0) continue;
-      ivec2 texel = min(base + ivec2(dx, dy), ao_size - 1);
+      // Every lane fetches, whatever its weight: with the fetch under the weight's divergent branch,
+      // llvmpipe crashed inside the TCG guest (SEGV reading a wild address in its JIT code, in
+      // vm.kms_play, kms_hotplug and board_play; never on the host), and fetching an in-range texel
+      // it then ignores costs next to nothing.
+      ivec2 texel = clamp(base + ivec2(dx, dy), ivec2(0), ao_size - 1);
       highp vec4 value = texelFetch(ao, texel, 0);
-      if (value.g <= 0.0) continue;
+      highp float weight = (dx == 0 ? 1.0 - f.x : f.x) * (dy == 0 ? 1.0 - f.y : f.y);
+      if (weight <= 0.0 || value.g <= 0.0) continue;
       highp float difference = abs(value.g - depth);
       if (difference < best_difference) {
         best_difference = difference;

@@ -171,10 +171,10 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
   highp vec3 view = normalize(-position);
   highp float visibility = 0.0, open = 0.0;
   for (int slice = 0; slice < slices; ++slice) {
-    highp vec2 jitter = ssao.kernel[slice].xy;
+    highp float jitter = ssao.kernel[slice].x;
     // Slices repeat every pi / slices: the pixel's turn (a full circle over the tile) is spread over
     // that period, or the 4x4 tile would hold as few as two distinct slice directions.
-    highp float phi = (kPi * (float(slice) + jitter.x) + 0.5 * turn_angle) / float(slices);
+    highp float phi = (kPi * (float(slice) + jitter) + 0.5 * turn_angle) / float(slices);
     highp vec2 direction = vec2(cos(phi), sin(phi));
     highp vec3 direction_view = vec3(direction, 0.0);
     highp vec3 ortho = direction_view - dot(direction_view, view) * view;
@@ -187,7 +187,11 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     highp float tangent_plus = cos(gamma + 0.5 * kPi), tangent_minus = cos(gamma - 0.5 * kPi);
     highp float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
     for (int step_index = 0; step_index < steps; ++step_index) {
-      highp float distance_pixels = max((float(step_index) + jitter.y) / float(steps) * radius_pixels, float(step_index + 1));
+      // Taps at the ends of equal steps, the last at the radius, and never jittered along the slice: a
+      // tap drawn anywhere in its step lands a pixel or two from the point in some frames, where the
+      // flat triangles of a curved surface rise above its smooth normal's tangent, and accumulated
+      // frames came out darker than any one frame (README, "AO in motion").
+      highp float distance_pixels = float(step_index + 1) * max(radius_pixels / float(steps), 1.0);
       for (int side = 0; side < 2; ++side) {
         highp vec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction;
         ivec2 texel = pixel + ivec2(floor(offset + 0.5));

@@ -328,8 +328,8 @@ struct AnalyticCorner {
     const double pi = std::acos(-1.0), turn_angle = std::atan2(turn(pixel).y, turn(pixel).x);
     double occluded = 0.0, open = 0.0;
     for (int slice = 0; slice < slices; ++slice) {
-      const glm::dvec2 jitter(p.kernel[slice]);
-      const double phi = (pi * (slice + jitter.x) + 0.5 * turn_angle) / slices;
+      const double jitter = p.kernel[slice].x;
+      const double phi = (pi * (slice + jitter) + 0.5 * turn_angle) / slices;
       const glm::dvec2 direction(std::cos(phi), std::sin(phi));
       // The slice plane holds the view direction and the screen direction; the normal projected into it
       // is at angle gamma from the view direction, towards the positive side.
@@ -343,7 +343,7 @@ struct AnalyticCorner {
       // Horizon angles from the view direction, each side starting at the tangent plane.
       double high[2] = {gamma + pi / 2, gamma - pi / 2};  // side 0 towards +direction (angle > 0), side 1 (< 0)
       for (int step = 0; step < steps; ++step) {
-        const double distance_pixels = std::max((step + jitter.y) / steps * radius_pixels, step + 1.0);
+        const double distance_pixels = (step + 1.0) * std::max(radius_pixels / steps, 1.0);
         for (int side = 0; side < 2; ++side) {
           const glm::dvec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction + 0.5;
           const glm::dvec2 edge = glm::abs(offset - glm::round(offset));

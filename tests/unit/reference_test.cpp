@@ -350,24 +350,24 @@ namespace {
 // Temporal accumulation turns the samples frame by frame. Frame 0 is the fixed tables; the turns of
 // the first N frames fill the whole circle evenly, so that every pixel sees every direction, not
 // only its own tile angle's neighbourhood (R2: the largest gap between sorted shares stays within a
-// small multiple of 1/N), every entry of the tile moves by the same angle, and the horizon
-// estimator's step jitter moves too, staying in [0, 1).
+// small multiple of 1/N), and every entry of the tile moves by the same angle. The kernel stays: the
+// horizon's taps at the ends of their steps were jittered along the slice once, and accumulated
+// frames came out darker than one frame.
 TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
   for (ssao::Estimator estimator : ssao::kEstimators) {
     ssao::AoSettings settings;
     settings.estimator = estimator;
     const auto base = params_for(settings, 1.0f);
     auto params = base;
-    ssao::advance_frame(params, settings, 0);
+    ssao::advance_frame(params, 0);
     for (int i = 0; i < SSAO_ROTATION_TILE * SSAO_ROTATION_TILE; ++i) {
       EXPECT_NEAR(params.rotation[i].x, base.rotation[i].x, 1e-6f);
       EXPECT_NEAR(params.rotation[i].y, base.rotation[i].y, 1e-6f);
     }
-    for (int i = 0; i < base.counts.x; ++i) EXPECT_NEAR(params.kernel[i].y, base.kernel[i].y, 1e-6f);
     const double gap = 2.0 * 3.14159265358979;
     std::vector<double> shares;
     for (unsigned frame = 0; frame < 64; ++frame) {
-      ssao::advance_frame(params, settings, frame);
+      ssao::advance_frame(params, frame);
       double turn = 0.0;
       for (int i = 0; i < SSAO_ROTATION_TILE * SSAO_ROTATION_TILE; ++i) {
         const double a = std::atan2(params.rotation[i].y, params.rotation[i].x) -
@@ -380,17 +380,7 @@ TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
       EXPECT_GE(turn, 0.0);
       EXPECT_LT(turn, 1.0 + 1e-6);
       shares.push_back(turn);
-      if (estimator == ssao::Estimator::horizon) {
-        for (int i = 0; i < params.counts.x; ++i) {
-          EXPECT_GE(params.kernel[i].y, 0.0f);
-          EXPECT_LT(params.kernel[i].y, 1.0f);
-        }
-        if (frame > 0) {
-          EXPECT_NE(params.kernel[0].y, base.kernel[0].y) << "frame " << frame;
-        }
-      } else {
-        for (int i = 0; i < params.counts.x; ++i) EXPECT_EQ(params.kernel[i], base.kernel[i]);
-      }
+      for (int i = 0; i < params.counts.x; ++i) EXPECT_EQ(params.kernel[i], base.kernel[i]) << "frame " << frame;
     }
     std::sort(shares.begin(), shares.end());
     double largest = 1.0 - shares.back() + shares.front();

@@ -210,7 +210,7 @@ bool ao_passes(const Frame& frame) {
   frame_view.nearest_depth = static_cast<float>(std::max(centre_distance - frame.scene.radius(), view.near));
   frame_view.scene_radius = static_cast<float>(frame.scene.radius());
   ssao::update_for_frame(params, settings.ao_settings, frame_view);
-  if (temporal) ssao::advance_frame(params, settings.ao_settings, targets.ao_frame);
+  if (temporal) ssao::advance_frame(params, targets.ao_frame);
   if (view.module) {
     // Algorithm 2 maps every sample itself and reads the full-resolution depth: no depth chain, and
     // no radius is skipped by a screen-space size that has no meaning here.

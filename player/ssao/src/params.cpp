@@ -37,13 +37,13 @@ shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float bas
   return params;
 }
 
-void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings, unsigned frame) {
-  // R2 (Roberts 2018): the generalised golden ratio in two dimensions; fract(n * a) with n counted
-  // modulo 2^20 keeps the product exact in double over months of frames.
+void advance_frame(shared_layout::SsaoParams& params, unsigned frame) {
+  // R2's first coordinate (Roberts 2018: the generalised golden ratio); fract(n * a) with n counted
+  // modulo 2^20 keeps the product exact in double over months of frames. Only the directions turn:
+  // the horizon's taps stay at the ends of their steps (ssao.comp says why).
   constexpr double kPlastic = 1.32471795724474602596;
   const double n = static_cast<double>(frame % (1u << 20));
   const double turn_share = std::fmod(n / kPlastic, 1.0);
-  const double step_share = std::fmod(n / (kPlastic * kPlastic), 1.0);
   // A whole turn, not one gap of the tile: every pixel must see every direction over the frames, or
   // its average keeps the tile's pattern (the AO of a still camera stays dithered without a blur).
   const std::span<const float> angles = rotation_angles();
@@ -51,11 +51,6 @@ void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings
     const double angle = angles[i] + turn_share * 2.0 * std::numbers::pi;
     params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.0f, 0.0f);
   }
-  if (settings.estimator != Estimator::horizon) return;
-  const int samples = params.counts.x;
-  const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
-  for (int i = 0; i < samples; ++i)
-    params.kernel[i].y = static_cast<float>(std::fmod(points[static_cast<size_t>(i)].y + step_share, 1.0));
 }
 
 int depth_chain_levels(int width, int height) {

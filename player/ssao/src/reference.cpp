@@ -86,8 +86,8 @@ struct Frame {
     const glm::vec3 view = glm::normalize(-position);
     float visibility = 0.0f, open = 0.0f;
     for (int slice = 0; slice < slices; ++slice) {
-      const glm::vec2 jitter(p.kernel[slice]);
-      const float phi = (kPi * (static_cast<float>(slice) + jitter.x) + 0.5f * turn_angle) / static_cast<float>(slices);
+      const float jitter = p.kernel[slice].x;
+      const float phi = (kPi * (static_cast<float>(slice) + jitter) + 0.5f * turn_angle) / static_cast<float>(slices);
       const glm::vec2 direction(std::cos(phi), std::sin(phi));
       const glm::vec3 direction_view(direction, 0.0f);
       const glm::vec3 ortho = direction_view - glm::dot(direction_view, view) * view;
@@ -101,8 +101,8 @@ struct Frame {
       const float tangent_plus = std::cos(gamma + 0.5f * kPi), tangent_minus = std::cos(gamma - 0.5f * kPi);
       float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
       for (int step = 0; step < steps; ++step) {
-        const float distance_pixels = std::max((static_cast<float>(step) + jitter.y) / static_cast<float>(steps) * radius_pixels,
-                                               static_cast<float>(step + 1));
+        // The ends of equal steps, as ssao.comp places them.
+        const float distance_pixels = static_cast<float>(step + 1) * std::max(radius_pixels / static_cast<float>(steps), 1.0f);
         for (int side = 0; side < 2; ++side) {
           const glm::vec2 offset = (side == 0 ? 1.0f : -1.0f) * distance_pixels * direction;
           const glm::ivec2 texel = pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)),

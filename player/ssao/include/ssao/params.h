@@ -73,11 +73,11 @@ struct FrameView {
 void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& settings, const FrameView& view);
 
 // Turns the samples of frame `frame` of a sequence (temporal accumulation): every entry of the
-// rotation tile advances by the frame's share of the gap between neighbouring tile angles, and the
-// horizon estimator's step jitter by a second share, both from the R2 low-discrepancy sequence, so
-// frames fill the gaps evenly instead of repeating the tile. Frame 0 is the fixed tables as
-// make_ssao_params wrote them. The CPU reference reads the same block, so it follows.
-void advance_frame(shared_layout::SsaoParams& params, const AoSettings& settings, unsigned frame);
+// rotation tile turns by the frame's share of a whole circle, from a low-discrepancy sequence, so
+// over frames every pixel sees every direction evenly instead of repeating the tile. Frame 0 is the
+// fixed tables as make_ssao_params wrote them; the kernel never changes. The CPU reference reads the
+// same block, so it follows.
+void advance_frame(shared_layout::SsaoParams& params, unsigned frame);
 
 // Levels of the depth chain for a full-resolution image (level 0 included).
 int depth_chain_levels(int width, int height);

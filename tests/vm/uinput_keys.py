@@ -2,9 +2,14 @@
 """A USB keyboard that types KEY... (board key names: space, n, c, p), made with uinput: the board's
 keyboard buttons for tests in the VM. It appears, waits until process PID has opened its event node
 (the player finds keyboards through inotify on /dev/input, once per loop), presses and releases each
-key in turn, and disappears.
+key in turn, prints "typed", stays plugged in for SECONDS (--hold; until killed, if sooner), and
+disappears.
 
-    uinput_keys.py --reader PID KEY...
+    uinput_keys.py --reader PID [--hold SECONDS] KEY...
+
+Hold it until the reader has acted: evdev refuses every read once its device is gone, events still
+queued included, so a reader that polls once a frame loses keys typed less than a frame before the
+keyboard goes (the guest's frames took over a second under load, and the pause never came).
 """
 import fcntl
 import os
@@ -24,9 +29,13 @@ CODES = {"space": 57, "n": 49, "c": 46, "p": 25, "return": 28}
 
 
 def main(argv):
-    reader = None
-    if len(argv) > 1 and argv[0] == "--reader":
-        reader, argv = int(argv[1]), argv[2:]
+    reader, hold = None, 0.5
+    while len(argv) > 1 and argv[0] in ("--reader", "--hold"):
+        if argv[0] == "--reader":
+            reader = int(argv[1])
+        else:
+            hold = float(argv[1])
+        argv = argv[2:]
     unknown = [k for k in argv if k not in CODES]
     if not argv or unknown:
         sys.exit(f"uinput_keys.py: expected keys among {', '.join(CODES)}, got {' '.join(unknown or ['nothing'])}")
@@ -63,7 +72,8 @@ def main(argv):
             emit(EV_SYN, SYN_REPORT, 0)
             # Short: a key held past its button's long press (play: 800 ms) would be a long press.
             time.sleep(0.05)
-    time.sleep(0.5)
+    print("typed", " ".join(argv), flush=True)
+    time.sleep(hold)
     fcntl.ioctl(fd, UI_DEV_DESTROY)
     os.close(fd)
 

@@ -148,16 +148,38 @@ highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basi
 #else
 // The cosine-weighted integral over a slice from the view vector to the horizon angle h, for the
 // normal at angle gamma in the slice (GTAO's closed form).
-highp float arc_integral(highp float h, highp float gamma, highp float cos_normal) {
-  return (cos_normal + 2.0 * h * sin(gamma) - cos(2.0 * h - gamma)) * 0.25;
+highp float arc_integral(highp float h, highp float gamma, highp float cos_normal, highp float sin_gamma) {
+  return (cos_normal + 2.0 * h * sin_gamma - cos(2.0 * h - gamma)) * 0.25;
 }
 
-// Taps from 1 to HORIZON_FADE_END radii away count less the farther they are (the sweep that chose
-// 2.5 is in the README, "The bias").
-#define HORIZON_FADE_END 2.5
+// Taps from 1 to HORIZON_FADE_END radii away count less the farther they are: their elevation (as a
+// pseudo-angle) shrinks linearly to nothing there (README, "The bias" and "AO in motion" hold the sweeps that chose 2.0).
+#define HORIZON_FADE_END 2.0
+// The first tap of each side, in full-resolution pixels from the point: the others are a quarter of
+// the radius apart or more, and missed every crease and groove narrower than that, and the occlusion
+// that smooth normals give the faces beside a sharp edge (README, "AO in motion"). Not 1.5: along
+// the axes that lands on a texel's edge, where float rounding picks the texel.
+#define HORIZON_NEAR_TAP_PIXELS 1.6
+// A tap's pseudo-angle is at most this times its share (see horizon_occlusion): it binds only past
+// about pi - 0.1.
+#define HORIZON_ELEVATION_CAP 20.0
+
+// How far tap `step_index` of `steps` lies from the point, in pixels: one tap near the point, the rest
+// at the ends of equal steps, the last at the radius, at least a pixel apart. Never jittered along the
+// slice: a tap drawn anywhere in its step fell at a different distance each frame, and the
+// accumulated frames came out darker than any one of them.
+highp float tap_distance_pixels(int step_index, int steps, highp float radius_pixels) {
+  if (steps == 1) return radius_pixels;
+  if (step_index == 0) return min(HORIZON_NEAR_TAP_PIXELS, radius_pixels);
+  return float(step_index) * max(radius_pixels / float(steps - 1), 1.0);
+}
 
 // GTAO for one radius: per slice, the highest horizon on each side (fading beyond the radius), then the
 // visible arc integrated with the cosine to the normal projected into the slice.
+// A tap's horizon is its elevation above the shaded point's tangent plane, the angle between the
+// slice's tangent on its side and the tap: a tap rounded to its texel's centre lies up to half a
+// texel off the slice, and on a plane that put it above the slice's own tangent line (a horizon
+// measured from the view direction saw false occlusion on every face, the more the nearer the tap).
 // The result is the occluded share of the slices' open arcs (a ratio), not 1 minus their mean
 // visibility: one slice's open arc integrates to 1 only on average over slice angles, so with few
 // slices 1 - mean visibility swings below 0 on tilted open faces and clamping that biased AO upwards
@@ -169,6 +191,15 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
   int steps = ssao.radius_range.w;
   int slices = max(1, ssao.counts.x / (2 * steps));
   highp vec3 view = normalize(-position);
+  // A tap's view position is (texel x tap_scale + tap_offset) x depth: view_position's arithmetic with
+  // its divisions done once per pixel rather than per tap.
+  // The block's members take the default float precision, mediump in the AO_MEDIUMP variant, so
+  // arithmetic on them alone would run at fp16: copied into a highp local first.
+  highp vec4 unproject = ssao.unproject;
+  highp vec2 tap_scale = 2.0 * unproject.xy / vec2(ssao.config.zw);
+  highp vec2 tap_offset = (1.0 / vec2(ssao.config.zw) - 1.0 + unproject.zw) * unproject.xy;
+  highp float inverse_radius = 1.0 / radius;
+  ivec2 last_texel = textureSize(u_linear_depth, level) - 1;  // depth_at's clamp, its size queried once
   highp float visibility = 0.0, open = 0.0;
   for (int slice = 0; slice < slices; ++slice) {
     highp float jitter = ssao.kernel[slice].x;
@@ -184,41 +215,58 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     if (projected_length < 1e-6) continue;  // the normal is the slice's axis: no arc to integrate
     highp float cos_normal = clamp(dot(projected_normal, view) / projected_length, -1.0, 1.0);
     highp float gamma = sign(dot(ortho, projected_normal)) * acos(cos_normal);
-    highp float tangent_plus = cos(gamma + 0.5 * kPi), tangent_minus = cos(gamma - 0.5 * kPi);
-    highp float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
+    // The slice's tangent towards the positive side; the normal's own component counts the rise, so a
+    // tap off the slice but on the tangent plane rises by nothing.
+    highp vec3 tangent_plus = cross(projected_normal, axis) / projected_length;
+    // Elevations above the tangent, as pseudo-angles: 0 is the tangent plane, 2 (pi) the far tangent.
+    highp float elevation_plus = 0.0, elevation_minus = 0.0;
     for (int step_index = 0; step_index < steps; ++step_index) {
-      // Taps at the ends of equal steps, the last at the radius, and never jittered along the slice: a
-      // tap drawn anywhere in its step lands a pixel or two from the point in some frames, where the
-      // flat triangles of a curved surface rise above its smooth normal's tangent, and accumulated
-      // frames came out darker than any one frame (README, "AO in motion").
-      highp float distance_pixels = float(step_index + 1) * max(radius_pixels / float(steps), 1.0);
+      highp float distance_pixels = tap_distance_pixels(step_index, steps, radius_pixels);
       for (int side = 0; side < 2; ++side) {
         highp vec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction;
         ivec2 texel = pixel + ivec2(floor(offset + 0.5));
         if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
-        highp float sample_depth = depth_at(texel, level);
+        highp float sample_depth = texelFetch(u_linear_depth, min(texel >> level, last_texel), level).r;
         if (sample_depth <= 0.0) continue;
-        // Per tap, everything is relative to the shaded point and in units of the radius, so at
-        // mediump the offsets keep their precision and their squares cannot overflow within the reach.
-        SAMPLE_PRECISION vec3 delta = (view_position(texel, sample_depth) - position) / radius;
-        SAMPLE_PRECISION float distance = length(delta);
+        // Per tap, everything is relative to the shaded point and in units of the radius. All of it
+        // stays highp, at mediump too: at fp16 these offsets and the elevation below moved the AO by
+        // up to 0.0015 on llvmpipe, which evaluates part of its mediump arithmetic at 16 bits (the near
+        // tap's offset is a few hundredths of the radius, its rise a small difference of such numbers).
+        highp vec3 delta = (vec3((vec2(texel) * tap_scale + tap_offset) * sample_depth, -sample_depth) - position) * inverse_radius;
+        highp float distance = length(delta);
         if (distance >= HORIZON_FADE_END || distance <= 0.0) continue;
-        SAMPLE_PRECISION float horizon = dot(delta, view) / distance;
+        // The elevation is the angle of (along, rise / projected_length); both are scaled by
+        // projected_length to stay within the reach.
+        highp float rise = dot(delta, normal);
+        if (rise <= 0.0) continue;  // on or below the tangent plane: hides nothing
+        highp float along = dot(delta, tangent_plus) * (side == 0 ? projected_length : -projected_length);
+        // As a pseudo-angle, which orders taps as their angles do without trigonometry per tap (an atan
+        // per tap made the AO pass half as slow again on llvmpipe): share = rise / (|along| + rise) is
+        // 0 on the tangent plane and 1 along the normal; past the normal the pseudo-angle is 2 - share,
+        // up to 2 at the far tangent (pi). A tap within rounding of the tangent plane but behind the
+        // point (off the slice on a face seen edge-on) would jump from 0 to 2 on the sign of its rise:
+        // the cap keeps it continuous in the rise, and binds only within about 0.1 rad of pi.
+        highp float share = rise / (abs(along) + rise);
+        highp float elevation = min(along >= 0.0 ? share : 2.0 - share, HORIZON_ELEVATION_CAP * share);
         // A surface seen beyond the radius is the front of what may reach within it (the hidden
         // underside of a ball above the floor): it counts, fading to nothing at HORIZON_FADE_END
         // radii. Cutting it off at the radius made the AO too light (README, "The bias").
-        if (distance > 1.0)
-          horizon = mix(side == 0 ? tangent_plus : tangent_minus, horizon, (HORIZON_FADE_END - distance) / (HORIZON_FADE_END - 1.0));
-        if (side == 0) horizon_plus = max(horizon_plus, horizon);
-        else horizon_minus = max(horizon_minus, horizon);
+        if (distance > 1.0) elevation *= (HORIZON_FADE_END - distance) / (HORIZON_FADE_END - 1.0);
+        if (side == 0) elevation_plus = max(elevation_plus, elevation);
+        else elevation_minus = max(elevation_minus, elevation);
       }
     }
-    highp float h0 = -acos(clamp(horizon_minus, -1.0, 1.0));
-    highp float h1 = acos(clamp(horizon_plus, -1.0, 1.0));
-    h0 = gamma + max(h0 - gamma, -0.5 * kPi);
-    h1 = gamma + min(h1 - gamma, 0.5 * kPi);
-    visibility += projected_length * (arc_integral(h0, gamma, cos_normal) + arc_integral(h1, gamma, cos_normal));
-    open += projected_length * (arc_integral(gamma - 0.5 * kPi, gamma, cos_normal) + arc_integral(gamma + 0.5 * kPi, gamma, cos_normal));
+    // Back from pseudo-angles to radians: (1 - p, min(p, 2 - p)) points the way the tap did.
+    elevation_plus = atan(min(elevation_plus, 2.0 - elevation_plus), 1.0 - elevation_plus);
+    elevation_minus = atan(min(elevation_minus, 2.0 - elevation_minus), 1.0 - elevation_minus);
+    // Horizon angles from the view direction. A visible tap never lies past it; where the normal
+    // leans past it too (smooth normals at a silhouette), the side's arc is empty whatever the taps.
+    highp float h1 = gamma + 0.5 * kPi - min(elevation_plus, max(gamma + 0.5 * kPi, 0.0));
+    highp float h0 = gamma - 0.5 * kPi + min(elevation_minus, max(0.5 * kPi - gamma, 0.0));
+    highp float sin_gamma = sin(gamma);
+    visibility += projected_length * (arc_integral(h0, gamma, cos_normal, sin_gamma) + arc_integral(h1, gamma, cos_normal, sin_gamma));
+    // The whole open arc, arc_integral from gamma - pi/2 to gamma + pi/2, in closed form.
+    open += projected_length * (cos_normal + gamma * sin_gamma);
   }
   return open > 0.0 ? clamp(1.0 - visibility / open, 0.0, 1.0) : 0.0;
 }

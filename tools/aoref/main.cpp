@@ -137,8 +137,8 @@ int main(int argc, char** argv) try {
   std::printf("wrote %s (Y: AO, SE: standard error)\n", output.c_str());
   if (!compare_path.empty()) {
     const aoref::Metrics m = aoref::compare(estimate, result.ao, dump.depth);
-    std::printf("%s vs reference over %zu object pixels: MAE %.4f  RMSE %.4f  bias %+.4f  SSIM %.4f  edge MAE %.4f (%zu px within 3 px of depth edges)\n",
-                compare_path.c_str(), m.pixels, m.mae, m.rmse, m.bias, m.ssim, m.edge_mae, m.edge_pixels);
+    std::printf("%s vs reference over %zu object pixels: MAE %.4f  RMSE %.4f  bias %+.4f  noise %.4f  SSIM %.4f  edge MAE %.4f (%zu px within 3 px of depth edges)\n",
+                compare_path.c_str(), m.pixels, m.mae, m.rmse, m.bias, m.noise, m.ssim, m.edge_mae, m.edge_pixels);
     if (!error_map_path.empty()) {
       if (!aoref::write_rgb8(error_map_path, estimate.width, estimate.height,
                              aoref::error_map(estimate, result.ao, dump.depth, error_scale), error))

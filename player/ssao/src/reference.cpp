@@ -11,8 +11,17 @@ namespace ssao {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr float kUpsampleDepthTolerance = 0.05f;
-constexpr float kHorizonFadeEnd = 2.5f;  // ssao.comp's HORIZON_FADE_END  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
+constexpr float kUpsampleDepthTolerance = 0.05f;  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
+constexpr float kHorizonFadeEnd = 2.0f;        // ssao.comp's HORIZON_FADE_END
+constexpr float kHorizonNearTapPixels = 1.6f;  // ssao.comp's HORIZON_NEAR_TAP_PIXELS
+constexpr float kHorizonElevationCap = 20.0f;  // ssao.comp's HORIZON_ELEVATION_CAP
+
+// ssao.comp's tap_distance_pixels.
+float tap_distance_pixels(int step, int steps, float radius_pixels) {
+  if (steps == 1) return radius_pixels;
+  if (step == 0) return std::min(kHorizonNearTapPixels, radius_pixels);
+  return static_cast<float>(step) * std::max(radius_pixels / static_cast<float>(steps - 1), 1.0f);
+}
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
 
@@ -75,15 +84,19 @@ struct Frame {
     return static_cast<float>(hidden) / static_cast<float>(p.counts.x);
   }
 
-  // `mediump` rounds the per-tap values that ssao.comp declares SAMPLE_PRECISION to half floats.
+  // No `mediump` here: ssao.comp's horizon keeps every per-tap value highp in its mediump variant.
   float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, float d, float turn_angle,
-                          float radius, int level, bool mediump) const {
-    const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
+                          float radius, int level) const {
     const float radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0f) return 0.0f;
     const int steps = p.radius_range.w;
     const int slices = std::max(1, p.counts.x / (2 * steps));
     const glm::vec3 view = glm::normalize(-position);
+    // ssao.comp's per-pixel form of view_position for the taps.
+    const glm::vec2 unproject_scale(p.unproject.x, p.unproject.y), unproject_shift(p.unproject.z, p.unproject.w);
+    const glm::vec2 tap_scale = 2.0f * unproject_scale / glm::vec2(full);
+    const glm::vec2 tap_offset = (1.0f / glm::vec2(full) - 1.0f + unproject_shift) * unproject_scale;
+    const float inverse_radius = 1.0f / radius;
     float visibility = 0.0f, open = 0.0f;
     for (int slice = 0; slice < slices; ++slice) {
       const float jitter = p.kernel[slice].x;
@@ -98,11 +111,10 @@ struct Frame {
       const float cos_normal = std::clamp(glm::dot(projected_normal, view) / projected_length, -1.0f, 1.0f);
       const float side_sign = glm::dot(ortho, projected_normal);
       const float gamma = (side_sign > 0.0f ? 1.0f : side_sign < 0.0f ? -1.0f : 0.0f) * std::acos(cos_normal);
-      const float tangent_plus = std::cos(gamma + 0.5f * kPi), tangent_minus = std::cos(gamma - 0.5f * kPi);
-      float horizon_plus = tangent_plus, horizon_minus = tangent_minus;
+      const glm::vec3 tangent_plus = glm::cross(projected_normal, axis) / projected_length;
+      float elevation_plus = 0.0f, elevation_minus = 0.0f;
       for (int step = 0; step < steps; ++step) {
-        // The ends of equal steps, as ssao.comp places them.
-        const float distance_pixels = static_cast<float>(step + 1) * std::max(radius_pixels / static_cast<float>(steps), 1.0f);
+        const float distance_pixels = tap_distance_pixels(step, steps, radius_pixels);
         for (int side = 0; side < 2; ++side) {
           const glm::vec2 offset = (side == 0 ? 1.0f : -1.0f) * distance_pixels * direction;
           const glm::ivec2 texel = pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)),
@@ -110,26 +122,28 @@ struct Frame {
           if (outside(texel, full)) continue;
           const float sample_depth = depth_at(texel, level);
           if (sample_depth <= 0.0f) continue;
-          glm::vec3 delta = (view_position(texel, sample_depth) - position) / radius;
-          for (int c = 0; c < 3; ++c) delta[c] = sample_precision(delta[c]);
-          const float distance = sample_precision(glm::length(delta));
+          // ssao.comp keeps every per-tap value of the horizon highp in its mediump variant too.
+          const glm::vec3 delta = (glm::vec3((glm::vec2(texel) * tap_scale + tap_offset) * sample_depth, -sample_depth) - position) * inverse_radius;
+          const float distance = glm::length(delta);
           if (distance >= kHorizonFadeEnd || distance <= 0.0f) continue;
-          float horizon = sample_precision(glm::dot(delta, view) / distance);
-          if (distance > 1.0f) {
-            const float low = side == 0 ? tangent_plus : tangent_minus;
-            horizon = sample_precision(low + (horizon - low) * ((kHorizonFadeEnd - distance) / (kHorizonFadeEnd - 1.0f)));
-          }
-          if (side == 0) horizon_plus = std::max(horizon_plus, horizon);
-          else horizon_minus = std::max(horizon_minus, horizon);
+          const float rise = glm::dot(delta, normal);
+          if (rise <= 0.0f) continue;
+          const float along = glm::dot(delta, tangent_plus) * (side == 0 ? projected_length : -projected_length);
+          const float share = rise / (std::abs(along) + rise);  // ssao.comp's pseudo-angle
+          float elevation = std::min(along >= 0.0f ? share : 2.0f - share, kHorizonElevationCap * share);
+          if (distance > 1.0f) elevation *= (kHorizonFadeEnd - distance) / (kHorizonFadeEnd - 1.0f);
+          if (side == 0) elevation_plus = std::max(elevation_plus, elevation);
+          else elevation_minus = std::max(elevation_minus, elevation);
         }
       }
-      float h0 = -std::acos(std::clamp(horizon_minus, -1.0f, 1.0f));
-      float h1 = std::acos(std::clamp(horizon_plus, -1.0f, 1.0f));
-      h0 = gamma + std::max(h0 - gamma, -0.5f * kPi);
-      h1 = gamma + std::min(h1 - gamma, 0.5f * kPi);
+      const auto radians = [](float pseudo) { return std::atan2(std::min(pseudo, 2.0f - pseudo), 1.0f - pseudo); };
+      elevation_plus = radians(elevation_plus);
+      elevation_minus = radians(elevation_minus);
+      const float h1 = gamma + 0.5f * kPi - std::min(elevation_plus, std::max(gamma + 0.5f * kPi, 0.0f));
+      const float h0 = gamma - 0.5f * kPi + std::min(elevation_minus, std::max(0.5f * kPi - gamma, 0.0f));
       const auto arc_integral = [&](float h) { return (cos_normal + 2.0f * h * std::sin(gamma) - std::cos(2.0f * h - gamma)) * 0.25f; };
       visibility += projected_length * (arc_integral(h0) + arc_integral(h1));
-      open += projected_length * (arc_integral(gamma - 0.5f * kPi) + arc_integral(gamma + 0.5f * kPi));
+      open += projected_length * (cos_normal + gamma * std::sin(gamma));  // the whole open arc, as ssao.comp
     }
     // The occluded share of the open arcs: see horizon_occlusion in ssao.comp.
     return open > 0.0f ? std::clamp(1.0f - visibility / open, 0.0f, 1.0f) : 0.0f;
@@ -204,7 +218,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const float radius = frame.radius_at(k);
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
-                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level, mediump)
+                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
                               : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));

@@ -22,10 +22,12 @@ std::optional<Precision> parse_precision(std::string_view text);
 struct AoSettings {
   Estimator estimator = Estimator::horizon;
   Precision precision = Precision::highp;
-  int samples = 32;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
-  // Horizon: taps on each side of a slice, 1..32 (at most samples / 2). The horizon is the highest of
-  // the taps, so too few of them miss it and the AO comes out too light (README, "The bias").
-  int steps = 4;
+  int samples = 30;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
+  // Horizon: taps on each side of a slice, 1..32 (at most samples / 2): one 1.6 pixels from the point,
+  // the rest spread evenly to the radius. The horizon is the highest of the taps, so too few of them
+  // miss it and the AO comes out too light (README, "The bias"). Three slices of five: accumulation
+  // over frames turns the slices, and no frame has taps to spare for a fourth (README, "AO in motion").
+  int steps = 5;
   int radii = 1;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
   float bias = 0.03f;                 // depth bias as a fraction of each radius

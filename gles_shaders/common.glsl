@@ -1,9 +1,8 @@
 // Precision and helpers shared by the compute passes.
-#ifdef AO_MEDIUMP
-precision mediump float;
-#else
+// highp by default in every variant: AO_MEDIUMP (ssao.comp's SAMPLE_PRECISION) lowers only what it
+// names. A mediump default also made the uniform blocks' members mediump, and llvmpipe ran arithmetic
+// on them at 16 bits (the horizon's unprojection from them moved the AO by 0.005).
 precision highp float;
-#endif
 precision highp int;
 precision highp sampler2D;
 precision highp image2D;

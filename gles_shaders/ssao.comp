@@ -193,11 +193,8 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
   highp vec3 view = normalize(-position);
   // A tap's view position is (texel x tap_scale + tap_offset) x depth: view_position's arithmetic with
   // its divisions done once per pixel rather than per tap.
-  // The block's members take the default float precision, mediump in the AO_MEDIUMP variant, so
-  // arithmetic on them alone would run at fp16: copied into a highp local first.
-  highp vec4 unproject = ssao.unproject;
-  highp vec2 tap_scale = 2.0 * unproject.xy / vec2(ssao.config.zw);
-  highp vec2 tap_offset = (1.0 / vec2(ssao.config.zw) - 1.0 + unproject.zw) * unproject.xy;
+  highp vec2 tap_scale = 2.0 * ssao.unproject.xy / vec2(ssao.config.zw);
+  highp vec2 tap_offset = (1.0 / vec2(ssao.config.zw) - 1.0 + ssao.unproject.zw) * ssao.unproject.xy;
   highp float inverse_radius = 1.0 / radius;
   ivec2 last_texel = textureSize(u_linear_depth, level) - 1;  // depth_at's clamp, its size queried once
   highp float visibility = 0.0, open = 0.0;

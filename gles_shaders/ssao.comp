@@ -153,7 +153,8 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 }
 
 // Taps from 1 to HORIZON_FADE_END radii away count less the farther they are: their elevation (as a
-// pseudo-angle) shrinks linearly to nothing there (README, "The bias" and "AO in motion" hold the sweeps that chose 2.0).
+// pseudo-angle) shrinks linearly to nothing there (README, "The bias" and "AO in motion" hold the
+// sweeps that chose 2.0).
 #define HORIZON_FADE_END 2.0
 // The first tap of each side, in full-resolution pixels from the point: the others are a quarter of
 // the radius apart or more, and missed every crease and groove narrower than that, and the occlusion

@@ -47,10 +47,11 @@ Comparison compare(const std::vector<glm::vec2>& gpu, const std::vector<glm::vec
 // that moves one pixel's AO by one sample's weight (1/samples). Allowed at up to 1% of pixels; all
 // others agree to half-float precision.
 // Horizon: its AO is continuous in the tap depths (a tap's elevation fades to nothing at the end of
-// its reach), and the only discontinuity, a tap's texel, floor(offset + 0.5), needs a tap within float
-// rounding of a texel's edge, which none of these scenes has: measured on llvmpipe (egl and osmesa, full and half resolution, flat
-// and chained depth), every pixel agrees to one half-float step (2^-11 = 0.00049 at AO in [0.5, 1),
-// where both round to rgba16f) and the rest, llvmpipe's sin/cos/acos against libm's, stays under 1e-4.
+// its reach), and the only discontinuity, a tap's texel, floor(offset + 0.5), needs a tap within
+// float rounding of a texel's edge, which none of these scenes has: measured on llvmpipe (egl and
+// osmesa, full and half resolution, flat and chained depth), every pixel agrees to one half-float
+// step (2^-11 = 0.00049 at AO in [0.5, 1), where both round to rgba16f) and the rest, llvmpipe's
+// sin/cos/acos against libm's, stays under 1e-4.
 // So every horizon pixel must agree to 1e-3: a sign flipped or a tap off by one anywhere in the
 // estimator moves far more than that.
 void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool mediump_reference = false) {

@@ -200,10 +200,12 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
   ivec2 last_texel = textureSize(u_linear_depth, level) - 1;  // depth_at's clamp, its size queried once
   highp float visibility = 0.0, open = 0.0;
   for (int slice = 0; slice < slices; ++slice) {
-    highp float jitter = ssao.kernel[slice].x;
     // Slices repeat every pi / slices: the pixel's turn (a full circle over the tile) is spread over
-    // that period, or the 4x4 tile would hold as few as two distinct slice directions.
-    highp float phi = (kPi * (float(slice) + jitter) + 0.5 * turn_angle) / float(slices);
+    // that period, or the 4x4 tile would hold as few as two distinct slice directions. Evenly spaced:
+    // each slice's turn covers only its own pi / slices, so slices offset by the pattern's points
+    // (as they were) covered some directions twice over the frames and others never, and the
+    // accumulated AO converged on an error that depended on those points (README, "AO in motion").
+    highp float phi = (kPi * float(slice) + 0.5 * turn_angle) / float(slices);
     highp vec2 direction = vec2(cos(phi), sin(phi));
     highp vec3 direction_view = vec3(direction, 0.0);
     highp vec3 ortho = direction_view - dot(direction_view, view) * view;

@@ -329,8 +329,7 @@ struct AnalyticCorner {
     const double pi = std::acos(-1.0), turn_angle = std::atan2(turn(pixel).y, turn(pixel).x);
     double occluded = 0.0, open = 0.0;
     for (int slice = 0; slice < slices; ++slice) {
-      const double jitter = p.kernel[slice].x;
-      const double phi = (pi * (slice + jitter) + 0.5 * turn_angle) / slices;
+      const double phi = (pi * slice + 0.5 * turn_angle) / slices;  // evenly spaced slices
       const glm::dvec2 direction(std::cos(phi), std::sin(phi));
       // The slice plane holds the view direction and the screen direction; the normal projected into it
       // is at angle gamma from the view direction, towards the positive side.

@@ -90,7 +90,7 @@ const Row kRows[] = {
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_non_negative(v, s.radius); },
      [](const FrameSettings& s) { return float_text(s.radius); }},
-    {{"pattern", "Sample pattern", ""},
+    {{"pattern", "Sample pattern of the sphere and hemisphere kernels (the horizon spaces its slices evenly)", ""},
      [] { return names::choices<ssao::Pattern>(ssao::kPatternNames); },
      [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Pattern>(ssao::kPatternNames, v, s.ao_settings.pattern); },
      [](const FrameSettings& s) { return std::string(ssao::name(s.ao_settings.pattern)); }},

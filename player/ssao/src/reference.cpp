@@ -99,8 +99,7 @@ struct Frame {
     const float inverse_radius = 1.0f / radius;
     float visibility = 0.0f, open = 0.0f;
     for (int slice = 0; slice < slices; ++slice) {
-      const float jitter = p.kernel[slice].x;
-      const float phi = (kPi * (static_cast<float>(slice) + jitter) + 0.5f * turn_angle) / static_cast<float>(slices);
+      const float phi = (kPi * static_cast<float>(slice) + 0.5f * turn_angle) / static_cast<float>(slices);
       const glm::vec2 direction(std::cos(phi), std::sin(phi));
       const glm::vec3 direction_view(direction, 0.0f);
       const glm::vec3 ortho = direction_view - glm::dot(direction_view, view) * view;

@@ -71,10 +71,12 @@ std::vector<Config> sweep(const std::string& kind) {
   const std::vector<int> radii = full ? std::vector<int>{1, 2, 3, 4, 5} : std::vector<int>{1, 3, 5};
   const std::vector<ssao::Pattern> patterns = full ? std::vector<ssao::Pattern>(std::begin(ssao::kPatterns), std::end(ssao::kPatterns))
                                                    : std::vector<ssao::Pattern>{ssao::Pattern::poisson};
+  // The horizon spaces its slices evenly whatever the pattern: one pattern measures it.
+  const std::vector<ssao::Pattern> horizon_patterns{ssao::Pattern::poisson};
   for (ssao::Estimator estimator : ssao::kEstimators)
     for (int n : samples)
       for (int k : radii)
-        for (ssao::Pattern pattern : patterns)
+        for (ssao::Pattern pattern : estimator == ssao::Estimator::horizon ? horizon_patterns : patterns)
           for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral})
             for (bool half : {false, true}) {
               render::FrameSettings settings = defaults();

@@ -6,13 +6,14 @@
 // not bleed across creases either, where depth runs on smoothly.
 #include "common.glsl"
 #include "shared_layout.glsl"
+#include "gbuffer_normals.glsl"
 
 layout(local_size_x = BLUR_GROUP_SIZE, local_size_y = 1) in;
 
 layout(std140, binding = BINDING_BLUR_PARAMS) uniform BlurBlock { BlurParams blur; };
 uniform highp sampler2D u_source;  // r: AO, g: depth / far (0 for background)
 #ifdef DENOISE
-uniform highp sampler2D u_normal;  // full resolution, view space
+uniform highp sampler2D u_normal;  // full resolution, view space (gbuffer_normals.glsl)
 shared mediump vec3 run_normal[BLUR_GROUP_SIZE + 2 * BLUR_MAX_RADIUS];
 #endif
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
@@ -33,7 +34,7 @@ void main() {
     ivec2 texel = vertical ? ivec2(line, along) : ivec2(along, line);
     run[i] = texelFetch(u_source, texel, 0).rg;
 #ifdef DENOISE
-    run_normal[i] = texelFetch(u_normal, texel << blur.source.x, 0).xyz;
+    run_normal[i] = shading_normal(texelFetch(u_normal, texel << blur.source.x, 0));
 #endif
   }
   barrier();

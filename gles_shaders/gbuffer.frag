@@ -1,6 +1,8 @@
-// G-buffer: albedo, view-space normal, linear view depth. HAS_BASECOLOR_TEXTURE selects the
+// G-buffer: albedo, view-space shading and face normals (gbuffer_normals.glsl), linear view depth. HAS_BASECOLOR_TEXTURE selects the
 // textured variant; untextured materials skip the fetch entirely.
 precision highp float;
+
+#include "gbuffer_normals.glsl"
 
 in vec3 v_view_position;
 in vec3 v_view_normal;
@@ -29,8 +31,15 @@ void main() {
   // A zero normal (degenerate input) falls back to facing the camera rather than producing NaN.
   n = len > 1e-20 ? n / len : vec3(0.0, 0.0, 1.0);
   if (!gl_FrontFacing) n = -n;
+  // The face's plane from the position's screen derivatives: exact, since the quad's helper
+  // invocations interpolate this triangle's plane past its edges. Turned to face the camera, as the
+  // shading normal of a visible face is.
+  vec3 face = cross(dFdx(v_view_position), dFdy(v_view_position));
+  float face_length = length(face);
+  face = face_length > 1e-30 ? face / face_length : n;
+  if (dot(face, v_view_position) > 0.0) face = -face;
   o_albedo = vec4(albedo.rgb, 1.0);
-  o_normal = vec4(n, 1.0);
+  o_normal = vec4(octahedron_encode(n), octahedron_encode(face));
   o_linear_depth = -v_view_position.z;
 #ifdef LIGHTFIELD_MODULES
   o_world_position = vec4(v_world_position, 1.0);

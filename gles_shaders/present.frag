@@ -8,6 +8,7 @@
 #include "common.glsl"
 #include "shared_layout.glsl"
 #include "upsample.glsl"
+#include "gbuffer_normals.glsl"
 
 layout(std140, binding = BINDING_COMPOSITE_PARAMS) uniform CompositeBlock { CompositeParams composite; };
 uniform highp sampler2D u_albedo;
@@ -61,12 +62,12 @@ void main() {
 #if OUTPUT == OUTPUT_AO
   fragment = shaded(vec3(1.0 - ao) * fade);
 #elif OUTPUT == OUTPUT_NORMAL
-  fragment = data((texelFetch(u_normal, pixel, 0).xyz * 0.5 + 0.5) * fade);
+  fragment = data((shading_normal(texelFetch(u_normal, pixel, 0)) * 0.5 + 0.5) * fade);
 #elif OUTPUT == OUTPUT_DEPTH
   float t = (depth - composite.depth_range.x) / (composite.depth_range.y - composite.depth_range.x);
   fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
 #else
-  vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+  vec3 normal = shading_normal(texelFetch(u_normal, pixel, 0));
   vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
   float ambient = composite.light_direction.w;
   float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);

@@ -16,6 +16,7 @@
 // has no such form.
 #include "common.glsl"
 #include "shared_layout.glsl"
+#include "gbuffer_normals.glsl"
 #ifdef LIGHTFIELD_MODULES
 #include "lightfield.glsl"
 uniform highp sampler2D u_positions;  // world position of the visible surface; a = 0 on background
@@ -32,7 +33,7 @@ layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
 
 layout(std140, binding = BINDING_SSAO_PARAMS) uniform SsaoBlock { SsaoParams ssao; };
 uniform highp sampler2D u_linear_depth;  // level 0 full resolution, then the depth chain
-uniform highp sampler2D u_normal;        // view-space normals
+uniform highp sampler2D u_normal;        // view-space shading and face normals (gbuffer_normals.glsl)
 uniform highp float u_inverse_far;
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_ao;
 
@@ -185,7 +186,7 @@ highp float tap_distance_pixels(int step_index, int steps, highp float radius_pi
 // visibility: one slice's open arc integrates to 1 only on average over slice angles, so with few
 // slices 1 - mean visibility swings below 0 on tilted open faces and clamping that biased AO upwards
 // (+0.09 with one slice, +0.03 with two, against the near-field reference).
-highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp float depth,
+highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp vec3 face, highp float depth,
                               highp float turn_angle, highp float radius, int level) {
   highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
   if (radius_pixels < 1.0) return 0.0;  // the radius falls inside this pixel: nothing to find
@@ -219,7 +220,19 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     // tap off the slice but on the tangent plane rises by nothing.
     highp vec3 tangent_plus = cross(projected_normal, axis) / projected_length;
     // Elevations above the tangent, as pseudo-angles: 0 is the tangent plane, 2 (pi) the far tangent.
-    highp float elevation_plus = 0.0, elevation_minus = 0.0;
+    // They start at the face's own plane: where the shading normal leans off the facet's, part of
+    // its hemisphere lies below the facet, and a ray sent there leaves through the facet itself. No
+    // tap finds that when the facet is narrower than the near tap's distance, and on a finely
+    // tessellated mesh with smooth normals it is most of the AO that speckles from face to face
+    // (armadillo's bias -0.0056 without it; README, "AO in motion"). The face's trace on the slice
+    // rises above the tangent on one side (share as for a tap; the trace points along the tangent,
+    // so no elevation passes the normal) and sinks on the other.
+    highp vec3 face_trace = cross(axis, face);
+    if (dot(face_trace, tangent_plus) < 0.0) face_trace = -face_trace;
+    highp float face_along = dot(face_trace, tangent_plus) * projected_length;
+    highp float face_rise = dot(face_trace, normal);
+    highp float elevation_plus = face_rise > 0.0 ? face_rise / (face_along + face_rise) : 0.0;
+    highp float elevation_minus = face_rise < 0.0 ? -face_rise / (face_along - face_rise) : 0.0;
     for (int step_index = 0; step_index < steps; ++step_index) {
       highp float distance_pixels = tap_distance_pixels(step_index, steps, radius_pixels);
       for (int side = 0; side < 2; ++side) {
@@ -299,7 +312,7 @@ void main() {
 #if ESTIMATOR == ESTIMATOR_SPHERE
   highp mat3 basis = mat3(turn.x, turn.y, 0.0, -turn.y, turn.x, 0.0, 0.0, 0.0, 1.0);
 #elif ESTIMATOR == ESTIMATOR_HEMISPHERE
-  highp vec3 normal = background ? vec3(0.0, 0.0, 1.0) : texelFetch(u_normal, pixel, 0).xyz;
+  highp vec3 normal = background ? vec3(0.0, 0.0, 1.0) : shading_normal(texelFetch(u_normal, pixel, 0));
   highp vec3 reference = vec3(turn, 0.0);
   highp vec3 tangent = reference - normal * dot(reference, normal);
   // The turn lies in the image plane; a normal in that plane along the turn needs another tangent.
@@ -307,13 +320,15 @@ void main() {
   tangent = normalize(tangent);
   highp mat3 basis = mat3(tangent, cross(normal, tangent), normal);
 #else
-  highp vec3 normal = background ? vec3(0.0, 0.0, 1.0) : texelFetch(u_normal, pixel, 0).xyz;
+  highp vec4 normals = texelFetch(u_normal, pixel, 0);
+  highp vec3 normal = background ? vec3(0.0, 0.0, 1.0) : shading_normal(normals);
+  highp vec3 face = background ? normal : face_normal(normals);
   highp float turn_angle = atan(turn.y, turn.x);
 #endif
   float ao = ssao.radius_4_bias.w;
   for (int k = ssao.radius_range.x; k < ssao.radius_range.y; ++k) {
 #if ESTIMATOR == ESTIMATOR_HORIZON
-    ao = max(ao, horizon_occlusion(pixel, position, normal, depth, turn_angle, radius_at(k), level_at(k)));
+    ao = max(ao, horizon_occlusion(pixel, position, normal, face, depth, turn_angle, radius_at(k), level_at(k)));
 #elif defined(LIGHTFIELD_MODULES)
     ao = max(ao, hidden_share_module(position, depth, basis, radius_at(k)));
 #else

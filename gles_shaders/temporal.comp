@@ -11,12 +11,13 @@
 // and the still camera's average came out up to 0.01 off the mean of its frames.
 #include "common.glsl"
 #include "shared_layout.glsl"
+#include "gbuffer_normals.glsl"
 
 layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
 
 layout(std140, binding = BINDING_TEMPORAL_PARAMS) uniform TemporalBlock { TemporalParams temporal; };
 uniform highp sampler2D u_current;         // this frame's AO: r = AO, g = depth / far (0 on background)
-uniform highp sampler2D u_normal;          // full resolution, view space
+uniform highp sampler2D u_normal;          // full resolution, view space (gbuffer_normals.glsl)
 uniform highp sampler2D u_history;         // the previous frame's output of this pass
 uniform highp sampler2D u_history_normal;  // xyz: world normal of each history texel
 layout(rgba32f, binding = 0) writeonly uniform highp image2D u_target;
@@ -35,7 +36,7 @@ void main() {
   ivec2 pixel = ao_pixel << temporal.config.z;
   highp float depth = current.g * temporal.depth.x;
   highp vec3 position = view_position_at(pixel, depth, temporal.unproject, temporal.size.zw);
-  highp vec3 normal = normalize(mat3(temporal.view_to_world) * texelFetch(u_normal, pixel, 0).xyz);
+  highp vec3 normal = normalize(mat3(temporal.view_to_world) * shading_normal(texelFetch(u_normal, pixel, 0)));
 
   highp float history = 0.0, frames = 0.0, weight_sum = 0.0;
   if (temporal.config.x != 0) {

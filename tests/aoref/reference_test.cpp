@@ -181,7 +181,7 @@ TEST_P(SphereVsPlayer, AgreesOnAFacingPlane) {
   ssao::update_for_frame(params, ao, frame);
   const std::vector<float> depth_image(kSize * kSize, static_cast<float>(depth));
   const std::vector<glm::vec3> facing(depth_image.size(), glm::vec3(0, 0, 1));
-  const auto player = ssao::reference_ssao(ssao::build_depth_chain(depth_image, kSize, kSize), facing, params,
+  const auto player = ssao::reference_ssao(ssao::build_depth_chain(depth_image, kSize, kSize), facing, {}, params,
                                            1.0f / 20.0f, ssao::Estimator::sphere);
 
   scene::Scene s;

@@ -59,7 +59,7 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
   const ssao::Estimator estimator = settings.ao_settings.estimator;
   const auto depth = h.renderer.read_linear_depth();
   const auto chain = ssao::build_depth_chain(depth, settings.width, settings.height);
-  const auto cpu_raw = ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.ssao_params(),
+  const auto cpu_raw = ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(), h.renderer.ssao_params(),
                                             h.renderer.inverse_far(), estimator, mediump_reference);
   const auto gpu_raw = h.renderer.read_ao_raw();
   ASSERT_EQ(gpu_raw.size(), cpu_raw.size());

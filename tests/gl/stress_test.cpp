@@ -71,8 +71,8 @@ Difference difference(const Snapshot& a, const Snapshot& b) {
 
 void expect_all_finite(const Harness& h, const std::string& what) {
   for (float v : h.renderer.read_linear_depth()) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << what;
-  for (const glm::vec3& n : h.renderer.read_view_normals())
-    ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) << what;
+  for (const auto& normals : {h.renderer.read_view_normals(), h.renderer.read_view_face_normals()})
+    for (const glm::vec3& n : normals) ASSERT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) << what;
   for (const auto& buffer : {h.renderer.read_ao_raw(), h.renderer.read_ao_final()})
     for (const glm::vec2& ao : buffer) {
       ASSERT_TRUE(std::isfinite(ao.x) && std::isfinite(ao.y)) << what;
@@ -295,8 +295,9 @@ TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
       const auto depth = h.renderer.read_linear_depth();
       const auto chain = ssao::build_depth_chain(depth, kSide, kSide);
       const auto normals = h.renderer.read_view_normals();
-      const auto high = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
-      const auto medium = ssao::reference_ssao(chain, normals, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
+      const auto faces = h.renderer.read_view_face_normals();
+      const auto high = ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
+      const auto medium = ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
       double sum = 0.0;
       size_t objects = 0, off = 0, changed = 0;
       for (size_t i = 0; i < high.size(); ++i) {

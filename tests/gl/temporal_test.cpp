@@ -28,7 +28,7 @@ render::FrameSettings temporal_settings(int side) {
 std::vector<ssao::AoTexel> cpu_frame(const Harness& h) {
   const render::FrameSettings& settings = h.renderer.settings();
   const auto chain = ssao::build_depth_chain(h.renderer.read_linear_depth(), settings.width, settings.height);
-  return ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.ssao_params(), h.renderer.inverse_far(),
+  return ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(), h.renderer.ssao_params(), h.renderer.inverse_far(),
                               settings.ao_settings.estimator);
 }
 

@@ -29,7 +29,7 @@ shared_layout::SsaoParams params_for(ssao::AoSettings settings, float radius) {
 std::vector<ssao::AoTexel> run(const std::vector<float>& depth, const shared_layout::SsaoParams& params,
                                ssao::Estimator estimator = ssao::Estimator::sphere) {
   const std::vector<glm::vec3> facing(depth.size(), glm::vec3(0, 0, 1));
-  return ssao::reference_ssao(ssao::build_depth_chain(depth, kSize, kSize), facing, params, 1.0f / 20.0f, estimator);
+  return ssao::reference_ssao(ssao::build_depth_chain(depth, kSize, kSize), facing, {}, params, 1.0f / 20.0f, estimator);
 }
 
 // What the sphere estimator gives on an unbounded plane facing the camera: the share of kernel
@@ -149,7 +149,7 @@ TEST(Reference, HemisphereSamplesDoNotHideBehindTheirOwnSlantedFace) {
     }
   const std::vector<glm::vec3> normals(image.size(), normal);
   ASSERT_GT(0.1f * params.radius_4_bias.z / 5.0f, 1.0f);  // the radius spans more than a pixel
-  const auto ao = ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, params, 1.0f / 20.0f, settings.estimator);
+  const auto ao = ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, {}, params, 1.0f / 20.0f, settings.estimator);
   double sum = 0.0;
   for (int y = 4; y < kSize - 4; ++y)
     for (int x = 4; x < kSize - 4; ++x) {
@@ -172,6 +172,50 @@ TEST(Reference, HorizonSeesAStepWallAtTheFoot) {
   const auto ao = run(image, params_for(settings, 0.4f), ssao::Estimator::horizon);
   EXPECT_GT(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, 0.05f);
   EXPECT_NEAR(ao[static_cast<size_t>(32 * kSize + 8)].x, 0.0f, 0.01f);  // open plane, away from the step (above)
+}
+
+TEST(Reference, HorizonDarkensWhereTheShadingNormalLeansOffItsFace) {
+  // A roof seen from its ridge: two planes at 30 degrees to the image plane meet along the image's
+  // middle column, nearest the camera. The two columns beside the ridge carry the smooth normal of a
+  // mesh (the two faces' average, facing the camera), as interpolated normals do on a coarse mesh.
+  // A third of their hemisphere's cosine-weighted share lies below their own face, where a ray
+  // leaves through the face at once: (1 - cos 30) / 2 of it. Every tap, 1.6 pixels out or farther,
+  // lands past the ridge on the other face, which falls away: only the face's own plane finds it.
+  constexpr float kTilt = glm::radians(30.0f), kRidgeDepth = 5.0f;
+  ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::horizon;
+  settings.samples = 80;  // 8 slices of 5 taps: the slices' average is the integral over directions
+  const auto params = params_for(settings, 0.3f);
+  const glm::vec3 left(-std::sin(kTilt), 0.0f, std::cos(kTilt)), right(std::sin(kTilt), 0.0f, std::cos(kTilt));
+  const glm::vec3 ridge(0.0f, 0.0f, -kRidgeDepth);
+  std::vector<float> depth(kSize * kSize);
+  std::vector<glm::vec3> shading(depth.size()), faces(depth.size());
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const glm::vec2 ndc = (glm::vec2(x, y) + 0.5f) / static_cast<float>(kSize) * 2.0f - 1.0f;
+      const glm::vec3 ray((ndc.x + params.unproject.z) * params.unproject.x, (ndc.y + params.unproject.w) * params.unproject.y, -1.0f);
+      // The solid lies behind both planes: a ray enters it where it crosses the later one.
+      const float t_left = glm::dot(left, ridge) / glm::dot(left, ray), t_right = glm::dot(right, ridge) / glm::dot(right, ray);
+      const size_t i = static_cast<size_t>(y * kSize + x);
+      depth[i] = std::max(t_left, t_right);
+      faces[i] = x < kSize / 2 ? left : right;
+      shading[i] = x == kSize / 2 - 1 || x == kSize / 2 ? glm::vec3(0.0f, 0.0f, 1.0f) : faces[i];
+    }
+  const auto chain = ssao::build_depth_chain(depth, kSize, kSize);
+  const auto with_faces = ssao::reference_ssao(chain, shading, faces, params, 1.0f / 20.0f, settings.estimator);
+  const auto without = ssao::reference_ssao(chain, shading, {}, params, 1.0f / 20.0f, settings.estimator);
+  const float expected = (1.0f - std::cos(kTilt)) / 2.0f;
+  for (int y = 16; y < kSize - 16; ++y) {
+    for (int x : {kSize / 2 - 1, kSize / 2}) {
+      const size_t i = static_cast<size_t>(y * kSize + x);
+      EXPECT_NEAR(with_faces[i].x, expected, 0.006f) << "beside the ridge at " << x << "," << y;
+      EXPECT_LT(without[i].x, 0.01f) << "the taps alone, at " << x << "," << y;
+    }
+    for (int x : {kSize / 2 - 8, kSize / 2 + 8}) {
+      const size_t i = static_cast<size_t>(y * kSize + x);
+      EXPECT_LT(with_faces[i].x, 0.01f) << "on a face with its own normal, at " << x << "," << y;
+    }
+  }
 }
 
 TEST(Reference, DepthChainKeepsObjectDepthsAndHalvesTheSize) {

@@ -3,6 +3,7 @@
 #include "gl_util.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace render {
 namespace {
@@ -17,6 +18,26 @@ std::vector<float> read_rgba_float(const gl::Texture& texture, int w, int h) {
   gl::api.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, pixels.data());
   gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   return pixels;
+}
+
+// gbuffer_normals.glsl's octahedron_decode, in the same float arithmetic.
+glm::vec3 octahedron_decode(float x, float y) {
+  glm::vec3 n(x, y, 1.0f - std::abs(x) - std::abs(y));
+  if (n.z < 0.0f) {
+    const float u = (1.0f - std::abs(n.y)) * (n.x >= 0.0f ? 1.0f : -1.0f);
+    const float v = (1.0f - std::abs(n.x)) * (n.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = u;
+    n.y = v;
+  }
+  return glm::normalize(n);
+}
+
+std::vector<glm::vec3> read_normal_pair(const ViewTargets& targets, int first_channel) {
+  const std::vector<float> rgba = read_rgba_float(targets.normal, targets.settings().width, targets.settings().height);
+  std::vector<glm::vec3> normals(rgba.size() / 4);
+  for (size_t i = 0; i < normals.size(); ++i)
+    normals[i] = octahedron_decode(rgba[i * 4 + static_cast<size_t>(first_channel)], rgba[i * 4 + static_cast<size_t>(first_channel) + 1]);
+  return normals;
 }
 
 }  // namespace
@@ -41,12 +62,8 @@ std::vector<float> read_linear_depth(const ViewTargets& targets) {
   return depth;
 }
 
-std::vector<glm::vec3> read_view_normals(const ViewTargets& targets) {
-  const std::vector<float> rgba = read_rgba_float(targets.normal, targets.settings().width, targets.settings().height);
-  std::vector<glm::vec3> normals(rgba.size() / 4);
-  for (size_t i = 0; i < normals.size(); ++i) normals[i] = glm::vec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]);
-  return normals;
-}
+std::vector<glm::vec3> read_view_normals(const ViewTargets& targets) { return read_normal_pair(targets, 0); }
+std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets) { return read_normal_pair(targets, 2); }
 
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int w, int h) {
   const std::vector<float> rgba = read_rgba_float(texture, w, h);

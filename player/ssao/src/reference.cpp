@@ -85,8 +85,8 @@ struct Frame {
   }
 
   // No `mediump` here: ssao.comp's horizon keeps every per-tap value highp in its mediump variant.
-  float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, float d, float turn_angle,
-                          float radius, int level) const {
+  float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, glm::vec3 face, float d,
+                          float turn_angle, float radius, int level) const {
     const float radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0f) return 0.0f;
     const int steps = p.radius_range.w;
@@ -111,7 +111,13 @@ struct Frame {
       const float side_sign = glm::dot(ortho, projected_normal);
       const float gamma = (side_sign > 0.0f ? 1.0f : side_sign < 0.0f ? -1.0f : 0.0f) * std::acos(cos_normal);
       const glm::vec3 tangent_plus = glm::cross(projected_normal, axis) / projected_length;
-      float elevation_plus = 0.0f, elevation_minus = 0.0f;
+      // The face's own plane bounds the horizons first (ssao.comp says why).
+      glm::vec3 face_trace = glm::cross(axis, face);
+      if (glm::dot(face_trace, tangent_plus) < 0.0f) face_trace = -face_trace;
+      const float face_along = glm::dot(face_trace, tangent_plus) * projected_length;
+      const float face_rise = glm::dot(face_trace, normal);
+      float elevation_plus = face_rise > 0.0f ? face_rise / (face_along + face_rise) : 0.0f;
+      float elevation_minus = face_rise < 0.0f ? -face_rise / (face_along - face_rise) : 0.0f;
       for (int step = 0; step < steps; ++step) {
         const float distance_pixels = tap_distance_pixels(step, steps, radius_pixels);
         for (int side = 0; side < 2; ++side) {
@@ -188,7 +194,7 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 }
 
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
+                                    const std::vector<glm::vec3>& view_face_normals, const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump) {
   const Frame frame{depth, params, glm::ivec2(params.config.z, params.config.w)};
   const int width = params.counts.z, height = params.counts.w;
@@ -201,6 +207,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
       const glm::vec3 position = frame.view_position(pixel, d);
       const glm::vec2 turn(params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE]);
       const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, frame.full.x)];
+      const glm::vec3 face = view_face_normals.empty() ? normal : view_face_normals[index(pixel, frame.full.x)];
       glm::mat3 basis(turn.x, turn.y, 0.0f, -turn.y, turn.x, 0.0f, 0.0f, 0.0f, 1.0f);
       if (estimator == Estimator::hemisphere) {
         const glm::vec3 reference(turn, 0.0f);
@@ -217,7 +224,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const float radius = frame.radius_at(k);
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
-                              ? frame.horizon_occlusion(pixel, position, normal, d, std::atan2(turn.y, turn.x), radius, level)
+                              ? frame.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), radius, level)
                               : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));

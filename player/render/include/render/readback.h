@@ -14,7 +14,10 @@ namespace render {
 // The presented image, RGBA8, row 0 at the top.
 std::vector<uint8_t> read_presented(const PresentTarget& target, int width, int height);
 std::vector<float> read_linear_depth(const ViewTargets& targets);
+// The G-buffer's view-space normals (gbuffer_normals.glsl): the shading normal, and the geometric
+// normal of the face each pixel lies on (what the horizon estimator bounds its horizons with).
 std::vector<glm::vec3> read_view_normals(const ViewTargets& targets);
+std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets);
 // r: AO, g: depth / far, at the AO resolution.
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int width, int height);
 // Per AO texel, how many frames the temporal average holds (0 on background); empty without temporal.

@@ -49,6 +49,7 @@ class Renderer {
   std::vector<uint8_t> read_color() const;  // RGBA8, row 0 at the top
   std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets_); }
   std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets_); }
+  std::vector<glm::vec3> read_view_face_normals() const { return render::read_view_face_normals(targets_); }
   std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
   std::vector<glm::vec2> read_ao_blurred() const;  // ditto, what the present pass reads: blurred, else the temporal average, else raw
   std::vector<glm::vec2> read_ao_final() const;

@@ -32,12 +32,11 @@ void main() {
   n = len > 1e-20 ? n / len : vec3(0.0, 0.0, 1.0);
   if (!gl_FrontFacing) n = -n;
   // The face's plane from the position's screen derivatives: exact, since the quad's helper
-  // invocations interpolate this triangle's plane past its edges. Turned to face the camera, as the
-  // shading normal of a visible face is.
+  // invocations interpolate this triangle's plane past its edges. Only the plane matters to the
+  // horizon, not which way its normal points.
   vec3 face = cross(dFdx(v_view_position), dFdy(v_view_position));
   float face_length = length(face);
   face = face_length > 1e-30 ? face / face_length : n;
-  if (dot(face, v_view_position) > 0.0) face = -face;
   o_albedo = vec4(albedo.rgb, 1.0);
   o_normal = vec4(octahedron_encode(n), octahedron_encode(face));
   o_linear_depth = -v_view_position.z;

@@ -577,6 +577,39 @@ TEST_P(Pipeline, SharedSceneWithoutNormalsRendersWithFiniteNormals) {
   for (const glm::vec3& n : h.renderer.read_view_normals()) ASSERT_FALSE(std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z));
 }
 
+TEST_P(Pipeline, TheGBufferHoldsTheFacesPlaneBesideTheShadingNormal) {
+  // A square facing the camera whose vertex normals all lean 20 degrees to the side, as smooth
+  // normals do on a facet of a coarse mesh: the shading normal read back is the leaning one, the
+  // face normal the square's own (either way round: only its plane matters to the horizon).
+  constexpr float kLean = glm::radians(20.0f);
+  scene::Scene built;
+  built.materials = {scene::Material{}};
+  scene::Mesh quad = scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);
+  for (scene::Vertex& v : quad.vertices) v.normal = glm::vec3(std::sin(kLean), 0.0f, std::cos(kLean));
+  scene::add_instance(built, quad);
+  scene::update_bounds(built);
+  render::FrameSettings settings = small_settings();
+  scene::Framing head_on;
+  head_on.azimuth_deg = 0.0;
+  head_on.elevation_deg = 0.0;
+  head_on.distance = 0.5;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+  const auto depth = h.renderer.read_linear_depth();
+  const auto shading = h.renderer.read_view_normals();
+  const auto faces = h.renderer.read_view_face_normals();
+  size_t objects = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (!(depth[i] > 0.0f)) continue;
+    ++objects;
+    ASSERT_NEAR(std::abs(faces[i].z), 1.0f, 1e-4f) << "pixel " << i << ": the face faces the camera";
+    ASSERT_NEAR(std::abs(shading[i].x), std::sin(kLean), 2e-3f) << "pixel " << i;
+    ASSERT_NEAR(shading[i].z, std::cos(kLean), 2e-3f) << "pixel " << i;
+  }
+  EXPECT_EQ(objects, depth.size()) << "the square fills the view";
+  EXPECT_EQ(h.renderer.gl_error(), "");
+}
+
 TEST_P(Pipeline, BaseColorTextureLandsWhereItsUvsSay) {
   // A square facing the camera with a 2x2 texture: red, green on the top row of the image (v = 0),
   // blue, white below, sampled nearest. glTF puts uv (0, 0) at the image's top-left corner.

@@ -577,6 +577,15 @@ TEST_P(Pipeline, SharedSceneWithoutNormalsRendersWithFiniteNormals) {
   for (const glm::vec3& n : h.renderer.read_view_normals()) ASSERT_FALSE(std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z));
 }
 
+// Straight down the z axis, near enough that a 2 x 2 square in the z = 0 plane fills the view.
+scene::Framing square_filling_the_view() {
+  scene::Framing head_on;
+  head_on.azimuth_deg = 0.0;
+  head_on.elevation_deg = 0.0;
+  head_on.distance = 0.5;
+  return head_on;
+}
+
 TEST_P(Pipeline, TheGBufferHoldsTheFacesPlaneBesideTheShadingNormal) {
   // A square facing the camera whose vertex normals all lean 20 degrees to the side, as smooth
   // normals do on a facet of a coarse mesh: the shading normal read back is the leaning one, the
@@ -589,12 +598,8 @@ TEST_P(Pipeline, TheGBufferHoldsTheFacesPlaneBesideTheShadingNormal) {
   scene::add_instance(built, quad);
   scene::update_bounds(built);
   render::FrameSettings settings = small_settings();
-  scene::Framing head_on;
-  head_on.azimuth_deg = 0.0;
-  head_on.elevation_deg = 0.0;
-  head_on.distance = 0.5;
   Harness h;
-  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, square_filling_the_view()));
   const auto depth = h.renderer.read_linear_depth();
   const auto shading = h.renderer.read_view_normals();
   const auto faces = h.renderer.read_view_face_normals();
@@ -630,12 +635,8 @@ TEST_P(Pipeline, BaseColorTextureLandsWhereItsUvsSay) {
   scene::update_bounds(built);
   render::FrameSettings settings = small_settings();
   settings.ao = false;
-  scene::Framing head_on;
-  head_on.azimuth_deg = 0.0;
-  head_on.elevation_deg = 0.0;
-  head_on.distance = 0.5;
   Harness h;
-  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, square_filling_the_view()));
   const auto color = h.renderer.read_color();  // row 0 at the top
   auto at = [&](int x, int y) { return glm::ivec3(color[static_cast<size_t>((y * kSide + x) * 4)],
                                                   color[static_cast<size_t>((y * kSide + x) * 4 + 1)],

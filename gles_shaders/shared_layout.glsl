@@ -50,7 +50,8 @@ struct SsaoParams {
                                  // z: 1 runs the estimator on background pixels too (only to measure the skip);
                                  // w: horizon taps on each side of a slice (slices = samples / (2 w))
   vec4 kernel[SSAO_MAX_SAMPLES];                             // see ssao::make_kernel
-  vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn
+  vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn; z: where along
+                                                             // its step each horizon tap falls (0.5: the end)
 };
 
 struct BlurParams {

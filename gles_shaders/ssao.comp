@@ -167,13 +167,15 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 #define HORIZON_ELEVATION_CAP 20.0
 
 // How far tap `step_index` of `steps` lies from the point, in pixels: one tap near the point, the rest
-// at the ends of equal steps, the last at the radius, at least a pixel apart. Never jittered along the
-// slice: a tap drawn anywhere in its step fell at a different distance each frame, and the
-// accumulated frames came out darker than any one of them.
-highp float tap_distance_pixels(int step_index, int steps, highp float radius_pixels) {
+// spaced equally to the radius, at least a pixel apart, each `jitter` of a step from the end of the
+// step before (0.5: at the ends of the steps, the last at the radius). Accumulated frames move them
+// along the slice, so the AO converges on the horizon over every distance and not over a few fixed
+// ones, which drew rings around every tall occluder (README, "AO in motion"). The near tap stays: it
+// finds the creases beside the point.
+highp float tap_distance_pixels(int step_index, int steps, highp float radius_pixels, highp float jitter) {
   if (steps == 1) return radius_pixels;
   if (step_index == 0) return min(HORIZON_NEAR_TAP_PIXELS, radius_pixels);
-  return float(step_index) * max(radius_pixels / float(steps - 1), 1.0);
+  return max((float(step_index) + jitter - 0.5) * radius_pixels / float(steps - 1), float(step_index));
 }
 
 // GTAO for one radius: per slice, the highest horizon on each side (fading beyond the radius), then the
@@ -187,7 +189,7 @@ highp float tap_distance_pixels(int step_index, int steps, highp float radius_pi
 // slices 1 - mean visibility swings below 0 on tilted open faces and clamping that biased AO upwards
 // (+0.09 with one slice, +0.03 with two, against the near-field reference).
 highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp vec3 face, highp float depth,
-                              highp float turn_angle, highp float radius, int level) {
+                              highp float turn_angle, highp float tap_jitter, highp float radius, int level) {
   highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
   if (radius_pixels < 1.0) return 0.0;  // the radius falls inside this pixel: nothing to find
   int steps = ssao.radius_range.w;
@@ -234,7 +236,7 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     highp float elevation_plus = face_rise > 0.0 ? face_rise / (face_along + face_rise) : 0.0;
     highp float elevation_minus = face_rise < 0.0 ? -face_rise / (face_along - face_rise) : 0.0;
     for (int step_index = 0; step_index < steps; ++step_index) {
-      highp float distance_pixels = tap_distance_pixels(step_index, steps, radius_pixels);
+      highp float distance_pixels = tap_distance_pixels(step_index, steps, radius_pixels, tap_jitter);
       for (int side = 0; side < 2; ++side) {
         highp vec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction;
         ivec2 texel = pixel + ivec2(floor(offset + 0.5));
@@ -307,7 +309,8 @@ void main() {
       : world_turn(position);
 #else
   highp vec3 position = view_position(pixel, depth);
-  highp vec2 turn = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy;
+  highp vec4 tile_entry = ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
+  highp vec2 turn = tile_entry.xy;
 #endif
 #if ESTIMATOR == ESTIMATOR_SPHERE
   highp mat3 basis = mat3(turn.x, turn.y, 0.0, -turn.y, turn.x, 0.0, 0.0, 0.0, 1.0);
@@ -324,11 +327,12 @@ void main() {
   highp vec3 normal = background ? vec3(0.0, 0.0, 1.0) : shading_normal(normals);
   highp vec3 face = background ? normal : face_normal(normals);
   highp float turn_angle = atan(turn.y, turn.x);
+  highp float tap_jitter = tile_entry.z;
 #endif
   float ao = ssao.radius_4_bias.w;
   for (int k = ssao.radius_range.x; k < ssao.radius_range.y; ++k) {
 #if ESTIMATOR == ESTIMATOR_HORIZON
-    ao = max(ao, horizon_occlusion(pixel, position, normal, face, depth, turn_angle, radius_at(k), level_at(k)));
+    ao = max(ao, horizon_occlusion(pixel, position, normal, face, depth, turn_angle, tap_jitter, radius_at(k), level_at(k)));
 #elif defined(LIGHTFIELD_MODULES)
     ao = max(ao, hidden_share_module(position, depth, basis, radius_at(k)));
 #else

@@ -259,8 +259,10 @@ struct AnalyticCorner {
     }
     return best;
   }
-  glm::dvec2 turn(glm::ivec2 pixel) const {
-    return glm::dvec2(p.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE]);
+  glm::dvec2 turn(glm::ivec2 pixel) const { return glm::dvec2(tile_entry(pixel)); }
+  double tap_jitter(glm::ivec2 pixel) const { return tile_entry(pixel).z; }
+  glm::vec4 tile_entry(glm::ivec2 pixel) const {
+    return p.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
   }
 
   // Sphere and hemisphere: the share of kernel points hidden by the surface, as an interval: a point
@@ -346,10 +348,11 @@ struct AnalyticCorner {
       const glm::dvec3 tangent_plus = glm::cross(projected, axis) / length;
       double elevation[2] = {0.0, 0.0};  // side 0 towards +direction (angle > 0), side 1 (< 0)
       for (int step = 0; step < steps; ++step) {
-        // One tap 1.6 pixels out, the rest at the ends of equal steps to the radius.
+        // One tap 1.6 pixels out, the rest equally spaced to the radius, each the pixel's jitter of a
+        // step beyond the end of the step before (0.5: at the ends of the steps), a pixel apart at least.
         const double distance_pixels = steps == 1 ? radius_pixels
                                        : step == 0 ? std::min(1.6, radius_pixels)
-                                                   : step * std::max(radius_pixels / (steps - 1), 1.0);
+                                                   : std::max((step + tap_jitter(pixel) - 0.5) * radius_pixels / (steps - 1), double(step));
         for (int side = 0; side < 2; ++side) {
           const auto tap_elevation = [&](glm::ivec2 texel) {
             if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return 0.0;

@@ -394,9 +394,7 @@ namespace {
 // Temporal accumulation turns the samples frame by frame. Frame 0 is the fixed tables; the turns of
 // the first N frames fill the whole circle evenly, so that every pixel sees every direction, not
 // only its own tile angle's neighbourhood (R2: the largest gap between sorted shares stays within a
-// small multiple of 1/N), and every entry of the tile moves by the same angle. The kernel stays: the
-// horizon's taps at the ends of their steps were jittered along the slice once, and accumulated
-// frames came out darker than one frame.
+// small multiple of 1/N), and every entry of the tile moves by the same angle. The kernel stays.
 TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
   for (ssao::Estimator estimator : ssao::kEstimators) {
     ssao::AoSettings settings;
@@ -430,6 +428,40 @@ TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
     double largest = 1.0 - shares.back() + shares.front();
     for (size_t i = 1; i < shares.size(); ++i) largest = std::max(largest, shares[i] - shares[i - 1]);
     EXPECT_LE(largest, 2.5 / 64.0) << ssao::name(estimator);
+  }
+}
+
+// The horizon's taps lie at the ends of their steps in a single frame (rotation[i].z = 0.5). Over
+// accumulated frames each entry of the tile moves its taps along their steps through every share of
+// a step evenly (the golden ratio's sequence), and in one frame the sixteen entries hold sixteen
+// different shares, so neighbours do not find the same occluders at the same distances.
+TEST(Frame, AdvancingMovesEachTapThroughItsWholeStepOverFrames) {
+  constexpr int kEntries = SSAO_ROTATION_TILE * SSAO_ROTATION_TILE;
+  ssao::AoSettings settings;
+  settings.estimator = ssao::Estimator::horizon;
+  auto params = params_for(settings, 1.0f);
+  for (int i = 0; i < kEntries; ++i) EXPECT_EQ(params.rotation[i].z, 0.5f) << "entry " << i << " of a single frame";
+  std::vector<std::vector<double>> shares(kEntries);
+  for (unsigned frame = 0; frame < 64; ++frame) {
+    ssao::advance_frame(params, frame);
+    std::vector<double> this_frame;
+    for (int i = 0; i < kEntries; ++i) {
+      const double share = params.rotation[i].z;
+      EXPECT_GE(share, 0.0);
+      EXPECT_LT(share, 1.0);
+      shares[static_cast<size_t>(i)].push_back(share);
+      this_frame.push_back(share);
+    }
+    std::sort(this_frame.begin(), this_frame.end());
+    for (size_t i = 1; i < this_frame.size(); ++i)
+      EXPECT_NEAR(this_frame[i] - this_frame[i - 1], 1.0 / kEntries, 1e-5) << "frame " << frame << ": a sixteenth apart";
+  }
+  for (int i = 0; i < kEntries; ++i) {
+    std::vector<double>& entry = shares[static_cast<size_t>(i)];
+    std::sort(entry.begin(), entry.end());
+    double largest = 1.0 - entry.back() + entry.front();
+    for (size_t k = 1; k < entry.size(); ++k) largest = std::max(largest, entry[k] - entry[k - 1]);
+    EXPECT_LE(largest, 2.5 / 64.0) << "entry " << i;
   }
 }
 

@@ -33,23 +33,30 @@ shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float bas
   for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
   const std::span<const float> angles = rotation_angles();
   for (size_t i = 0; i < angles.size(); ++i)
-    params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.0f, 0.0f);
+    params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.5f, 0.0f);
   return params;
 }
 
 void advance_frame(shared_layout::SsaoParams& params, unsigned frame) {
-  // R2's first coordinate (Roberts 2018: the generalised golden ratio); fract(n * a) with n counted
-  // modulo 2^20 keeps the product exact in double over months of frames. Only the directions turn:
-  // the horizon's taps stay at the ends of their steps (ssao.comp says why).
-  constexpr double kPlastic = 1.32471795724474602596;
+  // R2's first coordinate (Roberts 2018: the generalised golden ratio) for the turn, the golden
+  // ratio's own sequence for the taps' place along their steps (R2's second coordinate left gaps of
+  // 4/64 in 64 frames, the golden ratio under 2.5/64); fract(n * a) with n counted modulo 2^20 keeps
+  // the product exact in double over months of frames.
+  constexpr double kPlastic = 1.32471795724474602596, kGolden = 1.61803398874989484820;
   const double n = static_cast<double>(frame % (1u << 20));
   const double turn_share = std::fmod(n / kPlastic, 1.0);
+  const double tap_share = std::fmod(n / kGolden, 1.0);
   // A whole turn, not one gap of the tile: every pixel must see every direction over the frames, or
   // its average keeps the tile's pattern (the AO of a still camera stays dithered without a blur).
   const std::span<const float> angles = rotation_angles();
   for (size_t i = 0; i < angles.size(); ++i) {
     const double angle = angles[i] + turn_share * 2.0 * std::numbers::pi;
-    params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), 0.0f, 0.0f);
+    // The tile's sixteenths in another order than the turn's Bayer matrix, so that neighbours with
+    // close turns do not also have close taps.
+    const double tap_offset = (static_cast<double>((i * 7 + 3) % 16) + 0.5) / 16.0;
+    const double tap_jitter = std::fmod(tap_share + tap_offset, 1.0);
+    params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)),
+                                   static_cast<float>(tap_jitter), 0.0f);
   }
 }
 

@@ -17,10 +17,10 @@ constexpr float kHorizonNearTapPixels = 1.6f;  // ssao.comp's HORIZON_NEAR_TAP_P
 constexpr float kHorizonElevationCap = 20.0f;  // ssao.comp's HORIZON_ELEVATION_CAP
 
 // ssao.comp's tap_distance_pixels.
-float tap_distance_pixels(int step, int steps, float radius_pixels) {
+float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter) {
   if (steps == 1) return radius_pixels;
   if (step == 0) return std::min(kHorizonNearTapPixels, radius_pixels);
-  return static_cast<float>(step) * std::max(radius_pixels / static_cast<float>(steps - 1), 1.0f);
+  return std::max((static_cast<float>(step) + jitter - 0.5f) * radius_pixels / static_cast<float>(steps - 1), static_cast<float>(step));
 }
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
@@ -86,7 +86,7 @@ struct Frame {
 
   // No `mediump` here: ssao.comp's horizon keeps every per-tap value highp in its mediump variant.
   float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, glm::vec3 face, float d,
-                          float turn_angle, float radius, int level) const {
+                          float turn_angle, float tap_jitter, float radius, int level) const {
     const float radius_pixels = radius * p.radius_4_bias.z / d;
     if (radius_pixels < 1.0f) return 0.0f;
     const int steps = p.radius_range.w;
@@ -119,7 +119,7 @@ struct Frame {
       float elevation_plus = face_rise > 0.0f ? face_rise / (face_along + face_rise) : 0.0f;
       float elevation_minus = face_rise < 0.0f ? -face_rise / (face_along - face_rise) : 0.0f;
       for (int step = 0; step < steps; ++step) {
-        const float distance_pixels = tap_distance_pixels(step, steps, radius_pixels);
+        const float distance_pixels = tap_distance_pixels(step, steps, radius_pixels, tap_jitter);
         for (int side = 0; side < 2; ++side) {
           const glm::vec2 offset = (side == 0 ? 1.0f : -1.0f) * distance_pixels * direction;
           const glm::ivec2 texel = pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)),
@@ -205,7 +205,8 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
       const float d = depth.at(pixel, 0);
       if (d <= 0.0f) continue;
       const glm::vec3 position = frame.view_position(pixel, d);
-      const glm::vec2 turn(params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE]);
+      const glm::vec4 tile_entry = params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
+      const glm::vec2 turn(tile_entry);
       const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, frame.full.x)];
       const glm::vec3 face = view_face_normals.empty() ? normal : view_face_normals[index(pixel, frame.full.x)];
       glm::mat3 basis(turn.x, turn.y, 0.0f, -turn.y, turn.x, 0.0f, 0.0f, 0.0f, 1.0f);
@@ -224,7 +225,7 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         const float radius = frame.radius_at(k);
         const int level = frame.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
-                              ? frame.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), radius, level)
+                              ? frame.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), tile_entry.z, radius, level)
                               : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));

@@ -76,9 +76,11 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
 
 // Turns the samples of frame `frame` of a sequence (temporal accumulation): every entry of the
 // rotation tile turns by the frame's share of a whole circle, from a low-discrepancy sequence, so
-// over frames every pixel sees every direction evenly instead of repeating the tile. Frame 0 is the
-// fixed tables as make_ssao_params wrote them; the kernel never changes. The CPU reference reads the
-// same block, so it follows.
+// over frames every pixel sees every direction evenly instead of repeating the tile; and the
+// horizon's taps move along their steps (rotation[i].z, 0.5 for the ends of the steps, which is where
+// make_ssao_params leaves them for a single frame) by the golden ratio's sequence, each entry from its own
+// start, so over frames they cover the whole slice rather than a few fixed distances. The kernel
+// never changes. The CPU reference reads the same block, so it follows.
 void advance_frame(shared_layout::SsaoParams& params, unsigned frame);
 
 // Levels of the depth chain for a full-resolution image (level 0 included).

@@ -157,25 +157,27 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 // pseudo-angle) shrinks linearly to nothing there (README, "The bias" and "AO in motion" hold the
 // sweeps that chose 2.0).
 #define HORIZON_FADE_END 2.0
-// The first tap of each side, in full-resolution pixels from the point: the others are a quarter of
-// the radius apart or more, and missed every crease and groove narrower than that, and the occlusion
-// that smooth normals give the faces beside a sharp edge (README, "AO in motion"). Not 1.5: along
-// the axes that lands on a texel's edge, where float rounding picks the texel.
+// The nearest the first tap of each side comes to the point, in full-resolution pixels: the others
+// are a quarter of the radius apart or more, and missed every crease and groove narrower than that
+// (README, "AO in motion"). Not 1.5: along the axes that lands on a texel's edge, where float
+// rounding picks the texel.
 #define HORIZON_NEAR_TAP_PIXELS 1.6
 // A tap's pseudo-angle is at most this times its share (see horizon_occlusion): it binds only past
 // about pi - 0.1.
 #define HORIZON_ELEVATION_CAP 20.0
 
-// How far tap `step_index` of `steps` lies from the point, in pixels: one tap near the point, the rest
-// spaced equally to the radius, at least a pixel apart, each `jitter` of a step from the end of the
-// step before (0.5: at the ends of the steps, the last at the radius). Accumulated frames move them
-// along the slice, so the AO converges on the horizon over every distance and not over a few fixed
-// ones, which drew rings around every tall occluder (README, "AO in motion"). The near tap stays: it
-// finds the creases beside the point.
+// How far tap `step_index` of `steps` lies from the point, in pixels: the rest spaced equally to the
+// radius, at least a pixel apart, each `jitter` of a step from the end of the step before (0.5: at
+// the ends of the steps, the last at the radius), and the first `jitter` of the way from
+// HORIZON_NEAR_TAP_PIXELS to half a step, where the second one's range begins. Accumulated frames
+// move them all along the slice, so the AO converges on the horizon over every distance from the
+// near one to the radius and not over a few fixed ones, which drew rings around every tall occluder
+// (README, "AO in motion").
 highp float tap_distance_pixels(int step_index, int steps, highp float radius_pixels, highp float jitter) {
   if (steps == 1) return radius_pixels;
-  if (step_index == 0) return min(HORIZON_NEAR_TAP_PIXELS, radius_pixels);
-  return max((float(step_index) + jitter - 0.5) * radius_pixels / float(steps - 1), float(step_index));
+  highp float spacing = radius_pixels / float(steps - 1);
+  if (step_index == 0) return min(mix(HORIZON_NEAR_TAP_PIXELS, max(0.5 * spacing, HORIZON_NEAR_TAP_PIXELS), jitter), radius_pixels);
+  return max((float(step_index) + jitter - 0.5) * spacing, float(step_index));
 }
 
 // GTAO for one radius: per slice, the highest horizon on each side (fading beyond the radius), then the

@@ -348,11 +348,13 @@ struct AnalyticCorner {
       const glm::dvec3 tangent_plus = glm::cross(projected, axis) / length;
       double elevation[2] = {0.0, 0.0};  // side 0 towards +direction (angle > 0), side 1 (< 0)
       for (int step = 0; step < steps; ++step) {
-        // One tap 1.6 pixels out, the rest equally spaced to the radius, each the pixel's jitter of a
-        // step beyond the end of the step before (0.5: at the ends of the steps), a pixel apart at least.
+        // The rest equally spaced to the radius, each the pixel's jitter of a step beyond the end of the
+        // step before (0.5: at the ends of the steps), a pixel apart at least; the first the jitter of
+        // the way from 1.6 pixels out to half a step.
+        const double spacing = radius_pixels / (steps - 1), jitter = tap_jitter(pixel);
         const double distance_pixels = steps == 1 ? radius_pixels
-                                       : step == 0 ? std::min(1.6, radius_pixels)
-                                                   : std::max((step + tap_jitter(pixel) - 0.5) * radius_pixels / (steps - 1), double(step));
+                                       : step == 0 ? std::min(1.6 + jitter * (std::max(0.5 * spacing, 1.6) - 1.6), radius_pixels)
+                                                   : std::max((step + jitter - 0.5) * spacing, double(step));
         for (int side = 0; side < 2; ++side) {
           const auto tap_elevation = [&](glm::ivec2 texel) {
             if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return 0.0;

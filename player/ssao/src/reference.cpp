@@ -19,8 +19,9 @@ constexpr float kHorizonElevationCap = 20.0f;  // ssao.comp's HORIZON_ELEVATION_
 // ssao.comp's tap_distance_pixels.
 float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter) {
   if (steps == 1) return radius_pixels;
-  if (step == 0) return std::min(kHorizonNearTapPixels, radius_pixels);
-  return std::max((static_cast<float>(step) + jitter - 0.5f) * radius_pixels / static_cast<float>(steps - 1), static_cast<float>(step));
+  const float spacing = radius_pixels / static_cast<float>(steps - 1);
+  if (step == 0) return std::min(glm::mix(kHorizonNearTapPixels, std::max(0.5f * spacing, kHorizonNearTapPixels), jitter), radius_pixels);
+  return std::max((static_cast<float>(step) + jitter - 0.5f) * spacing, static_cast<float>(step));
 }
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }

@@ -107,6 +107,29 @@ TEST_P(Pipeline, GpuSsaoAndBlurEqualTheCpuReference) {
   }
 }
 
+// The scenes above are small enough in pixels that the horizon's steps are a few pixels long; here
+// the radius spans dozens, so every tap, the first one included, lands where the pixel's jitter
+// puts it along its step, and the GPU must put it where the CPU reference does.
+TEST_P(Pipeline, HorizonWithAWideRadiusEqualsTheCpuReference) {
+  render::FrameSettings settings = small_settings();
+  settings.width = settings.height = 128;
+  settings.radius = 1.25f;
+  settings.blur.mode = ssao::Blur::off;
+  scene::Framing view;
+  view.azimuth_deg = 45.0;
+  view.elevation_deg = 35.0;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, view));
+  const auto depth = h.renderer.read_linear_depth();
+  const float centre_depth = depth[static_cast<size_t>(64 * 128 + 64)];
+  ASSERT_GT(centre_depth, 0.0f);
+  const auto& params = h.renderer.ssao_params();
+  const float radius_pixels = params.radii_0_3[params.radius_range.x] * params.radius_4_bias.z / centre_depth;
+  const float half_step = 0.5f * radius_pixels / static_cast<float>(params.radius_range.w - 1);
+  ASSERT_GT(half_step, 3.0f) << "the first tap's range, from 1.6 pixels to half a step, must be wide";
+  expect_gpu_equals_reference(h, "corner, a radius of " + std::to_string(radius_pixels) + " pixels");
+}
+
 // --precision mediump runs the AO_MEDIUMP variant; llvmpipe computes its mediump at 32 bits, so it
 // must give what highp gives, within the same tolerances, against the highp CPU reference (the fp16
 // error itself is bounded on the CPU: Mediump.VariantStaysWithinTheBoundOfHighp in stress_test.cpp).

@@ -1,5 +1,5 @@
-// G-buffer: albedo, view-space shading and face normals (gbuffer_normals.glsl), linear view depth. HAS_BASECOLOR_TEXTURE selects the
-// textured variant; untextured materials skip the fetch entirely.
+// G-buffer: albedo, view-space shading and face normals (gbuffer_normals.glsl), linear view depth.
+// HAS_BASECOLOR_TEXTURE selects the textured variant; untextured materials skip the fetch entirely.
 precision highp float;
 
 #include "gbuffer_normals.glsl"

@@ -107,19 +107,29 @@ TEST_P(Pipeline, GpuSsaoAndBlurEqualTheCpuReference) {
   }
 }
 
+// builtin:corner at 128x128, unblurred, seen from above the corner so that both walls and the floor
+// fill the view.
+render::FrameSettings corner_settings(float radius) {
+  render::FrameSettings settings = small_settings();
+  settings.width = settings.height = 128;
+  settings.radius = radius;
+  settings.blur.mode = ssao::Blur::off;
+  return settings;
+}
+
+scene::Framing corner_view() {
+  scene::Framing view;
+  view.azimuth_deg = 45.0;
+  view.elevation_deg = 35.0;
+  return view;
+}
+
 // The scenes above are small enough in pixels that the horizon's steps are a few pixels long; here
 // the radius spans dozens, so every tap, the first one included, lands where the pixel's jitter
 // puts it along its step, and the GPU must put it where the CPU reference does.
 TEST_P(Pipeline, HorizonWithAWideRadiusEqualsTheCpuReference) {
-  render::FrameSettings settings = small_settings();
-  settings.width = settings.height = 128;
-  settings.radius = 1.25f;
-  settings.blur.mode = ssao::Blur::off;
-  scene::Framing view;
-  view.azimuth_deg = 45.0;
-  view.elevation_deg = 35.0;
   Harness h;
-  ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, view));
+  ASSERT_TRUE(h.start(GetParam(), "builtin:corner", corner_settings(1.25f), corner_view()));
   const auto depth = h.renderer.read_linear_depth();
   const float centre_depth = depth[static_cast<size_t>(64 * 128 + 64)];
   ASSERT_GT(centre_depth, 0.0f);
@@ -430,16 +440,10 @@ struct AnalyticCorner {
 TEST_P(Pipeline, CornerAndOpenFacesGetEachEstimatorsAnalyticValue) {
   // A radius a quarter of the walls' size makes the corner's shadow many pixels wide.
   for (ssao::Estimator estimator : ssao::kEstimators) {
-    render::FrameSettings settings = small_settings();
-    settings.width = settings.height = 128;
-    settings.radius = 0.5f;
+    render::FrameSettings settings = corner_settings(0.5f);
     settings.ao_settings.estimator = estimator;
-    settings.blur.mode = ssao::Blur::off;
-    scene::Framing view;
-    view.azimuth_deg = 45.0;
-    view.elevation_deg = 35.0;
     Harness h;
-    ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, view));
+    ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, corner_view()));
     const auto& params = h.renderer.ssao_params();
     ASSERT_EQ(params.radius_range.y - params.radius_range.x, 1);
     const glm::dmat4 camera_view = h.camera.view();

@@ -51,9 +51,11 @@ void advance_frame(shared_layout::SsaoParams& params, unsigned frame) {
   const std::span<const float> angles = rotation_angles();
   for (size_t i = 0; i < angles.size(); ++i) {
     const double angle = angles[i] + turn_share * 2.0 * std::numbers::pi;
-    // The tile's sixteenths in another order than the turn's Bayer matrix, so that neighbours with
-    // close turns do not also have close taps.
-    const double tap_offset = (static_cast<double>((i * 7 + 3) % 16) + 0.5) / 16.0;
+    // The tile's shares of a step in another order than the turn's Bayer matrix (7 is prime to the
+    // tile's 16 entries, so each share once), so that neighbours with close turns do not also have
+    // close taps.
+    const double entries = static_cast<double>(angles.size());
+    const double tap_offset = (static_cast<double>((i * 7 + 3) % angles.size()) + 0.5) / entries;
     const double tap_jitter = std::fmod(tap_share + tap_offset, 1.0);
     params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)),
                                    static_cast<float>(tap_jitter), 0.0f);

@@ -20,7 +20,8 @@ constexpr float kHorizonElevationCap = 20.0f;  // ssao.comp's HORIZON_ELEVATION_
 float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter) {
   if (steps == 1) return radius_pixels;
   const float spacing = radius_pixels / static_cast<float>(steps - 1);
-  if (step == 0) return std::min(glm::mix(kHorizonNearTapPixels, std::max(0.5f * spacing, kHorizonNearTapPixels), jitter), radius_pixels);
+  if (step == 0)
+    return std::min(glm::mix(kHorizonNearTapPixels, std::max(0.5f * spacing, kHorizonNearTapPixels), jitter), radius_pixels);
   return std::max((static_cast<float>(step) + jitter - 0.5f) * spacing, static_cast<float>(step));
 }
 
@@ -195,7 +196,8 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 }
 
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const std::vector<glm::vec3>& view_face_normals, const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
+                                    const std::vector<glm::vec3>& view_face_normals,
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump) {
   const Frame frame{depth, params, glm::ivec2(params.config.z, params.config.w)};
   const int width = params.counts.z, height = params.counts.w;

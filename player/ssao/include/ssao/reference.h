@@ -23,11 +23,13 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 
 // AO at the AO resolution of `params` (full or half). `view_normals` are the G-buffer's view-space
 // shading normals at full resolution (used by the hemisphere and horizon estimators), empty for +z;
-// `view_face_normals` the faces' geometric normals (the horizon's), empty for the shading normals. `mediump` emulates the
-// AO_MEDIUMP variant (--precision mediump) of every estimator by rounding what ssao.comp declares
-// SAMPLE_PRECISION (per-sample offsets and depth differences, per-tap offsets and horizons) to half floats.
+// `view_face_normals` the faces' geometric normals (the horizon's), empty for the shading normals.
+// `mediump` emulates the AO_MEDIUMP variant (--precision mediump) of every estimator by rounding what
+// ssao.comp declares SAMPLE_PRECISION (per-sample offsets and depth differences, per-tap offsets and
+// horizons) to half floats.
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const std::vector<glm::vec3>& view_face_normals, const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
+                                    const std::vector<glm::vec3>& view_face_normals,
+                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump = false);
 // `mode` gaussian, bilateral or denoise; denoise reads `view_normals` (full resolution, as for
 // reference_ssao) at each AO texel's full-resolution pixel.

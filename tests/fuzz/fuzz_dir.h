@@ -9,17 +9,21 @@
 namespace fuzz {
 
 inline const std::filesystem::path& scratch_dir() {
-  static const std::filesystem::path dir = [] {
+  // Never destroyed: the removal runs from atexit, after the destructor of a static path (registered
+  // once its initialiser returns, so run first) would already have emptied it, and nothing was
+  // removed.
+  static const std::filesystem::path* const dir = [] {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/player-fuzz-XXXXXX";
     if (!::mkdtemp(pattern.data())) std::abort();  // no scratch folder: nothing here can run
+    const auto* made = new std::filesystem::path(pattern);
     std::atexit([] {
       std::error_code ec;
       std::filesystem::remove_all(scratch_dir(), ec);
     });
-    return std::filesystem::path(pattern);
+    return made;
   }();
-  return dir;
+  return *dir;
 }
 
 }  // namespace fuzz

@@ -54,20 +54,25 @@ void main() {
     fragment = shaded(composite.background.rgb * fade);
     return;
   }
+  // Fetched once for the upsampling's plane weights and the shading: the two fetches sat in
+  // different branches, where the compiler could not merge them.
+  vec3 normal = shading_normal(texelFetch(u_normal, pixel, 0));
   float ao = 0.0;
   if (composite.config.y != 0) {
     if (composite.ao_config.z == 0) ao = texelFetch(u_ao, pixel, 0).r;
-    else ao = upsampled_ao(u_ao, composite.ao_config.xy, pixel, depth * composite.depth_range.z);
+    else
+      ao = upsampled_ao(u_ao, composite.ao_config.xy, pixel, depth * composite.depth_range.z,
+                        vec4(normal, composite.shading.y), composite.unproject,
+                        composite.config.zw);
   }
 #if OUTPUT == OUTPUT_AO
   fragment = shaded(vec3(1.0 - ao) * fade);
 #elif OUTPUT == OUTPUT_NORMAL
-  fragment = data((shading_normal(texelFetch(u_normal, pixel, 0)) * 0.5 + 0.5) * fade);
+  fragment = data((normal * 0.5 + 0.5) * fade);
 #elif OUTPUT == OUTPUT_DEPTH
   float t = (depth - composite.depth_range.x) / (composite.depth_range.y - composite.depth_range.x);
   fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
 #else
-  vec3 normal = shading_normal(texelFetch(u_normal, pixel, 0));
   vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
   float ambient = composite.light_direction.w;
   float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);

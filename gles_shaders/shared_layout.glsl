@@ -63,7 +63,9 @@ struct BlurParams {
 
 struct UpsampleParams {
   ivec4 config;           // x: full width, y: full height, z: AO width, w: AO height
-  vec4 depth;             // x: 1 / far (the AO texture's g channel is depth / far)
+  vec4 depth;             // x: 1 / far (the AO texture's g channel is depth / far); y: the plane
+                          // tolerance of upsample.glsl (0: depth alone)
+  vec4 unproject;         // the presented view's, as SsaoParams.unproject
 };
 
 struct CompositeParams {
@@ -74,7 +76,9 @@ struct CompositeParams {
   ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
                           // w: unused
   ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
-  vec4 shading;           // x: AO strength, the power on 1 - AO in the shaded image (1: as computed)
+  vec4 shading;           // x: AO strength, the power on 1 - AO in the shaded image (1: as computed);
+                          // y: the plane tolerance of upsample.glsl (0: depth alone)
+  vec4 unproject;         // as SsaoParams.unproject, for the upsampling's plane test
 };
 
 // Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by

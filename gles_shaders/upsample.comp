@@ -3,12 +3,14 @@
 #include "common.glsl"
 #include "shared_layout.glsl"
 #include "upsample.glsl"
+#include "gbuffer_normals.glsl"
 
 layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
 
 layout(std140, binding = BINDING_UPSAMPLE_PARAMS) uniform UpsampleBlock { UpsampleParams upsample; };
 uniform highp sampler2D u_ao;            // low resolution: r = AO, g = depth / far
 uniform highp sampler2D u_linear_depth;  // full resolution
+uniform highp sampler2D u_normal;        // full resolution, view space (gbuffer_normals.glsl)
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
 
 void main() {
@@ -19,5 +21,7 @@ void main() {
     imageStore(u_target, pixel, vec4(0.0));
     return;
   }
-  imageStore(u_target, pixel, vec4(upsampled_ao(u_ao, upsample.config.zw, pixel, depth), depth, 0.0, 0.0));
+  highp vec4 plane = vec4(shading_normal(texelFetch(u_normal, pixel, 0)), upsample.depth.y);
+  highp float ao = upsampled_ao(u_ao, upsample.config.zw, pixel, depth, plane, upsample.unproject, upsample.config.xy);
+  imageStore(u_target, pixel, vec4(ao, depth, 0.0, 0.0));
 }

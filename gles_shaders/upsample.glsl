@@ -12,12 +12,29 @@
 #define UPSAMPLE_DEPTH_TOLERANCE 0.05
 
 // `ao` is low resolution (r = AO, g = depth / far), `ao_size` its size; `depth` is the pixel's
-// linear depth / far, > 0 (background never reaches here).
-highp float upsampled_ao(highp sampler2D ao, ivec2 ao_size, ivec2 pixel, highp float depth) {
+// linear depth / far, > 0 (background never reaches here). `plane`: xyz the pixel's view-space
+// normal, w how far off its tangent plane, relative to its depth, a texel's point may lie before its
+// weight falls by e beyond the closest texel's (ViewTargets::upsample_plane_tolerance; 0: weigh by
+// depth alone); `unproject` and `full_size` place pixels as view_position_at does.
+highp float upsampled_ao(highp sampler2D ao, ivec2 ao_size, ivec2 pixel, highp float depth, highp vec4 plane,
+                         highp vec4 unproject, ivec2 full_size) {
   // Low-resolution texel i shaded full-resolution pixel 2i, so pixel p lies at p / 2 in texels: an
   // even pixel on its own texel, an odd one halfway to the next.
   ivec2 base = pixel >> 1;
   highp vec2 f = vec2(pixel & 1) * 0.5;
+  // Where depth alone cannot tell (a crease, a groove's two walls, a curved surface), the texels whose
+  // points lie closest to the pixel's tangent plane are its surface: weighing the others down keeps a
+  // groove's dark floor off the wall beside it. A texel's point is its depth times its pixel's ray
+  // (view_position_at), and its pixel lies `offset` pixels from this one, so its height over the
+  // plane is (depth_t - depth) dot(ray, n) + depth_t (offset x ray_step) . n.xy: a few multiplies a
+  // texel instead of unprojecting each. The present pass costs 1 ms more at 1024x768 on llvmpipe
+  // (14.3 against 13.3 ms).
+  highp vec3 ray = view_position_at(pixel, 1.0, unproject, full_size);
+  highp float facing = dot(ray, plane.xyz);
+  highp vec2 step_along_normal = 2.0 * unproject.xy / vec2(full_size) * plane.xy;
+  // exp(-height / (plane.w depth)); the factor common to all four cancels in the weighted mean, so
+  // the heights need no shift by the least. 0 turns the weights off.
+  highp float sharpness = plane.w > 0.0 ? 1.0 / (plane.w * depth) : 0.0;
   highp float best_difference = 1e30, best_ao = 0.0;
   highp float weight_sum = 0.0, ao_sum = 0.0;
   for (int dy = 0; dy < 2; ++dy)
@@ -36,6 +53,9 @@ highp float upsampled_ao(highp sampler2D ao, ivec2 ao_size, ivec2 pixel, highp f
         best_ao = value.r;
       }
       if (difference <= UPSAMPLE_DEPTH_TOLERANCE * depth) {
+        highp vec2 offset = vec2((texel << 1) - pixel);
+        highp float height = (value.g - depth) * facing + value.g * dot(offset, step_along_normal);
+        weight *= exp(-abs(height) * sharpness);
         weight_sum += weight;
         ao_sum += weight * value.r;
       }

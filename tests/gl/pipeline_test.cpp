@@ -85,7 +85,7 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
   if (settings.ao_settings.half_resolution) {
     // An interpolated AO is rounded to half float on the GPU's own terms (llvmpipe does not round to
     // nearest everywhere): one half-float step below 1, 2^-11, and no more.
-    const Comparison upsampled = compare(h.renderer.read_ao_final(), ssao::reference_upsample(low, depth, h.renderer.upsample_params()), 4.9e-4f);
+    const Comparison upsampled = compare(h.renderer.read_ao_final(), ssao::reference_upsample(low, depth, h.renderer.upsample_params(), h.renderer.read_view_normals()), 4.9e-4f);
     EXPECT_EQ(upsampled.off_by_more, 0u) << what << ", max difference " << upsampled.max_difference;
   }
   EXPECT_EQ(h.renderer.gl_error(), "") << what;

@@ -255,6 +255,34 @@ TEST(Reference, UpsamplingInterpolatesAlongASurfaceAndNotAcrossAnEdge) {
   EXPECT_EQ(full[11].y, 0.0f);
 }
 
+TEST(Reference, UpsamplingWeighsTexelsOffThePixelsTangentPlaneDown) {
+  // A 90-degree pinhole (unproject 1, 1, 0, 0) over 4x4 pixels and 2x2 texels. Row 0 of texels: a
+  // face at depth 1.00 facing the camera (texel 0, AO 1) meets another at depth 1.04 (texel 1,
+  // AO 0), within the 5% depth tolerance, so depth alone cannot tell them apart. Row 1: both texels
+  // on the first face.
+  shared_layout::UpsampleParams params{};
+  params.config = glm::ivec4(4, 4, 2, 2);
+  params.depth = glm::vec4(1.0f, 0.002f, 0, 0);
+  params.unproject = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+  const std::vector<ssao::AoTexel> low = {{1.0f, 1.0f}, {0.0f, 1.04f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+  const std::vector<float> depth = {1.0f, 1.0f, 1.04f, 1.04f, 1.0f, 1.0f, 1.04f, 1.04f,
+                                    1.0f, 1.0f, 1.0f,  1.0f,  1.0f, 1.0f, 1.0f,  1.0f};
+  const glm::vec3 facing_camera(0.0f, 0.0f, 1.0f), tilted = glm::normalize(glm::vec3(-1.0f, 0.0f, 1.0f));
+  std::vector<glm::vec3> normals(16, facing_camera);
+  for (int y : {0, 1})
+    for (int x : {2, 3}) normals[static_cast<size_t>(y * 4 + x)] = tilted;
+
+  const auto by_depth = ssao::reference_upsample(low, depth, params);
+  EXPECT_FLOAT_EQ(by_depth[1].x, 0.5f);  // the mean of both faces' texels
+  const auto by_plane = ssao::reference_upsample(low, depth, params, normals);
+  // Texel 1's point lies 0.04 off pixel 1's plane, 20 tolerances: weight e^-20.
+  EXPECT_NEAR(by_plane[1].x, 1.0f, 1e-3f);
+  EXPECT_EQ(by_plane[0].x, 1.0f);   // on its own texel, whatever the weights
+  EXPECT_EQ(by_plane[9].x, 0.5f);   // row 2 lies on texel row 1: one plane, plain bilinear
+  params.depth.y = 0.0f;            // a tolerance of 0 turns the plane weights off
+  EXPECT_FLOAT_EQ(ssao::reference_upsample(low, depth, params, normals)[1].x, 0.5f);
+}
+
 TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
   ssao::AoSettings settings;
   settings.estimator = ssao::Estimator::sphere;

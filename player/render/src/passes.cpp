@@ -293,7 +293,8 @@ void present_pass(const Frame& frame, const PresentTarget& target, float fade) {
   composite.config = glm::ivec4(static_cast<int>(settings.output), settings.ao ? 1 : 0, settings.width, settings.height);
   composite.ao_config = glm::ivec4(targets.ao_width(), targets.ao_height(), settings.ao_settings.half_resolution ? 1 : 0, 0);
   composite.viewport = glm::ivec4(target.x, target.y, 0, 0);
-  composite.shading = glm::vec4(settings.ao_strength, 0.0f, 0.0f, 0.0f);
+  composite.shading = glm::vec4(settings.ao_strength, targets.upsample_plane_tolerance(), 0.0f, 0.0f);
+  composite.unproject = targets.ssao_params.unproject;
   detail::update_uniform_buffer(targets.composite_ubo, &composite, sizeof composite);
   targets.last_inverse_far = composite.depth_range.z;
 

@@ -42,7 +42,7 @@ bool Programs::build(const gl::Caps&, std::string& error) {
     return false;
   depth_chain_source_level = gl::uniform(depth_chain, "u_source_level");
   detail::assign_units(depth_chain, {"u_linear_depth"});
-  detail::assign_units(upsample, {"u_ao", "u_linear_depth"});
+  detail::assign_units(upsample, {"u_ao", "u_linear_depth", "u_normal"});
   detail::assign_units(blur_gaussian, {"u_source"});
   detail::assign_units(blur_bilateral, {"u_source"});
   detail::assign_units(blur_denoise, {"u_source", "u_normal"});

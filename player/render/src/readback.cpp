@@ -91,6 +91,7 @@ std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets&
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_UPSAMPLE_PARAMS, ubo.id());
   detail::bind_texture(0, targets.ao_result());
   detail::bind_texture(1, targets.linear_depth);
+  detail::bind_texture(2, targets.normal);
   gl::api.BindImageTexture(0, full.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl::api.DispatchCompute(detail::groups(w, SSAO_GROUP_SIZE), detail::groups(h, SSAO_GROUP_SIZE), 1);
   gl::api.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -101,7 +102,8 @@ shared_layout::UpsampleParams upsample_params(const ViewTargets& targets) {
   shared_layout::UpsampleParams params{};
   params.config = glm::ivec4(targets.settings().width, targets.settings().height, targets.ao_width(), targets.ao_height());
   // The AO texture's g channel is depth / far: the same 1/far the present pass compared it with.
-  params.depth = glm::vec4(targets.last_inverse_far, 0.0f, 0.0f, 0.0f);
+  params.depth = glm::vec4(targets.last_inverse_far, targets.upsample_plane_tolerance(), 0.0f, 0.0f);
+  params.unproject = targets.ssao_params.unproject;
   return params;
 }
 

@@ -285,19 +285,33 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
 }
 
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
-                                        const shared_layout::UpsampleParams& params) {
+                                        const shared_layout::UpsampleParams& params,
+                                        const std::vector<glm::vec3>& view_normals) {
   const glm::ivec2 full(params.config.x, params.config.y), small(params.config.z, params.config.w);
+  const float plane_tolerance = view_normals.empty() ? 0.0f : params.depth.y;
+  // common.glsl's view_position_at, in the AO texture's depth / far units (distances are relative).
+  const auto view_position_at = [&](glm::ivec2 pixel, float d) {
+    const glm::vec2 ndc = (glm::vec2(pixel) + 0.5f) / glm::vec2(full) * 2.0f - 1.0f;
+    return glm::vec3((ndc.x + params.unproject.z) * d * params.unproject.x,
+                     (ndc.y + params.unproject.w) * d * params.unproject.y, -d);
+  };
   std::vector<AoTexel> out(static_cast<size_t>(full.x) * static_cast<size_t>(full.y), AoTexel(0.0f));
   for (int y = 0; y < full.y; ++y)
     for (int x = 0; x < full.x; ++x) {
       const float depth = linear_depth[index({x, y}, full.x)] * params.depth.x;
       if (depth <= 0.0f) continue;
-      // upsample.glsl: bilinear among the texels on the pixel's own surface, else the closest in depth.
+      // upsample.glsl: bilinear among the texels on the pixel's own surface, weighed down the further
+      // their points lie off its tangent plane; else the closest in depth.
       const glm::vec2 f(static_cast<float>(x & 1) * 0.5f, static_cast<float>(y & 1) * 0.5f);
+      const glm::vec3 normal = plane_tolerance > 0.0f ? view_normals[index({x, y}, full.x)] : glm::vec3(0.0f);
+      const float facing = glm::dot(view_position_at({x, y}, 1.0f), normal);
+      const glm::vec2 step_along_normal = 2.0f * glm::vec2(params.unproject.x, params.unproject.y) / glm::vec2(full) *
+                                          glm::vec2(normal.x, normal.y);
+      const float sharpness = plane_tolerance > 0.0f ? 1.0f / (plane_tolerance * depth) : 0.0f;
       float best_difference = 1e30f, best_ao = 0.0f, weight_sum = 0.0f, ao_sum = 0.0f;
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
-          const float weight = (dx == 0 ? 1.0f - f.x : f.x) * (dy == 0 ? 1.0f - f.y : f.y);
+          float weight = (dx == 0 ? 1.0f - f.x : f.x) * (dy == 0 ? 1.0f - f.y : f.y);
           if (weight <= 0.0f) continue;
           const glm::ivec2 texel = glm::min(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy), small - 1);
           const AoTexel value = low[index(texel, small.x)];
@@ -308,6 +322,9 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
             best_ao = value.x;
           }
           if (difference <= kUpsampleDepthTolerance * depth) {
+            const glm::vec2 offset(texel * 2 - glm::ivec2(x, y));
+            const float height = (value.y - depth) * facing + value.y * glm::dot(offset, step_along_normal);
+            weight *= std::exp(-std::abs(height) * sharpness);
             weight_sum += weight;
             ao_sum += weight * value.x;
           }

@@ -61,7 +61,8 @@ void main() {
   if (composite.config.y != 0) {
     if (composite.ao_config.z == 0) ao = texelFetch(u_ao, pixel, 0).r;
     else
-      ao = upsampled_ao(u_ao, composite.ao_config.xy, pixel, depth * composite.depth_range.z,
+      ao = upsampled_ao(u_ao, u_linear_depth, composite.depth_range.z, composite.ao_config.xy, pixel,
+                        depth * composite.depth_range.z,
                         vec4(normal, composite.shading.y), composite.unproject,
                         composite.config.zw);
   }

@@ -22,6 +22,7 @@ void main() {
     return;
   }
   highp vec4 plane = vec4(shading_normal(texelFetch(u_normal, pixel, 0)), upsample.depth.y);
-  highp float ao = upsampled_ao(u_ao, upsample.config.zw, pixel, depth, plane, upsample.unproject, upsample.config.xy);
+  highp float ao = upsampled_ao(u_ao, u_linear_depth, upsample.depth.x, upsample.config.zw, pixel, depth, plane,
+                                upsample.unproject, upsample.config.xy);
   imageStore(u_target, pixel, vec4(ao, depth, 0.0, 0.0));
 }

@@ -8,7 +8,7 @@ set -euo pipefail
 binary=$1 scratch=$2 seconds=$3 dict=$4
 shift 4
 rm -rf "$scratch"
-mkdir -p "$scratch/corpus" "$scratch/findings"
+mkdir -p "$scratch/corpus" "$scratch/findings" "$scratch/tmp"
 for input in "$@"; do
   if [ -d "$input" ]; then
     find "$input" -maxdepth 1 -type f -exec cp -t "$scratch/corpus" {} +
@@ -23,7 +23,8 @@ args=(-max_total_time="$seconds" -seed=1 -timeout=10 -rss_limit_mb=2048 -max_len
       -print_final_stats=1 -artifact_prefix="$scratch/findings/")
 [ "$dict" != - ] && args+=(-dict="$dict")
 set +e
-"$binary" "${args[@]}" "$scratch/corpus"
+# The target's scratch folder (fuzz_dir.h) under $scratch: a finding ends the run without exit handlers.
+TMPDIR=$scratch/tmp "$binary" "${args[@]}" "$scratch/corpus"
 rc=$?
 set -e
 if [ $rc -ne 0 ]; then

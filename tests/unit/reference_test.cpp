@@ -283,6 +283,32 @@ TEST(Reference, UpsamplingWeighsTexelsOffThePixelsTangentPlaneDown) {
   EXPECT_FLOAT_EQ(ssao::reference_upsample(low, depth, params, normals)[1].x, 0.5f);
 }
 
+TEST(Reference, UpsamplingOnASlantedPlaneIsPlainBilinear) {
+  // One plane, slanted in both directions and seen off-axis (unproject's shift), its depth at every
+  // pixel's centre solved from n . (depth x ray) = -1: every texel lies on each pixel's tangent
+  // plane, so the plane weights must leave the bilinear mean as it is. Both terms of a texel's
+  // height over the plane (along the pixel's ray and across to the texel's pixel) are at work here.
+  shared_layout::UpsampleParams params{};
+  params.config = glm::ivec4(8, 8, 4, 4);
+  params.depth = glm::vec4(1.0f, 0.002f, 0, 0);
+  params.unproject = glm::vec4(0.8f, 0.6f, 0.3f, -0.2f);
+  const glm::vec3 normal = glm::normalize(glm::vec3(0.5f, -0.4f, 1.0f));
+  std::vector<float> depth(64);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const glm::vec2 ndc = (glm::vec2(x, y) + 0.5f) / 8.0f * 2.0f - 1.0f;
+      const glm::vec3 ray((ndc.x + 0.3f) * 0.8f, (ndc.y - 0.2f) * 0.6f, -1.0f);
+      depth[static_cast<size_t>(y * 8 + x)] = -1.0f / glm::dot(normal, ray);
+    }
+  std::vector<ssao::AoTexel> low(16);  // texel (i, j) shaded pixel (2i, 2j) and holds its depth
+  for (int i = 0; i < 16; ++i)
+    low[static_cast<size_t>(i)] = {0.0625f * static_cast<float>(i), depth[static_cast<size_t>((i / 4) * 16 + (i % 4) * 2)]};
+  const auto by_depth = ssao::reference_upsample(low, depth, params);
+  const auto by_plane = ssao::reference_upsample(low, depth, params, std::vector<glm::vec3>(64, normal));
+  for (size_t i = 0; i < by_depth.size(); ++i) EXPECT_NEAR(by_plane[i].x, by_depth[i].x, 1e-3f) << "pixel " << i;
+  EXPECT_NEAR(by_plane[3 * 8 + 3].x, 0.0625f * (5 + 6 + 9 + 10) / 4.0f, 1e-3f);  // between four texels
+}
+
 TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
   ssao::AoSettings settings;
   settings.estimator = ssao::Estimator::sphere;

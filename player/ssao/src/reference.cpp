@@ -314,19 +314,20 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
           float weight = (dx == 0 ? 1.0f - f.x : f.x) * (dy == 0 ? 1.0f - f.y : f.y);
           if (weight <= 0.0f) continue;
           const glm::ivec2 texel = glm::min(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy), small - 1);
-          const AoTexel value = low[index(texel, small.x)];
-          if (value.y <= 0.0f) continue;
-          const float difference = std::abs(value.y - depth);
+          const float value = low[index(texel, small.x)].x;
+          const float texel_depth = linear_depth[index(texel * 2, full.x)] * params.depth.x;
+          if (texel_depth <= 0.0f) continue;
+          const float difference = std::abs(texel_depth - depth);
           if (difference < best_difference) {
             best_difference = difference;
-            best_ao = value.x;
+            best_ao = value;
           }
           if (difference <= kUpsampleDepthTolerance * depth) {
             const glm::vec2 offset(texel * 2 - glm::ivec2(x, y));
-            const float height = (value.y - depth) * facing + value.y * glm::dot(offset, step_along_normal);
+            const float height = (texel_depth - depth) * facing + texel_depth * glm::dot(offset, step_along_normal);
             weight *= std::exp(-std::abs(height) * sharpness);
             weight_sum += weight;
-            ao_sum += weight * value.x;
+            ao_sum += weight * value;
           }
         }
       const float ao = weight_sum > 0.0f ? to_half(ao_sum / weight_sum) : best_ao;

@@ -8,7 +8,7 @@
 layout(local_size_x = SSAO_GROUP_SIZE, local_size_y = SSAO_GROUP_SIZE) in;
 
 layout(std140, binding = BINDING_UPSAMPLE_PARAMS) uniform UpsampleBlock { UpsampleParams upsample; };
-uniform highp sampler2D u_ao;            // low resolution: r = AO, g = depth / far
+uniform highp sampler2D u_ao;            // low resolution: r = AO
 uniform highp sampler2D u_linear_depth;  // full resolution
 uniform highp sampler2D u_normal;        // full resolution, view space (gbuffer_normals.glsl)
 layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;

@@ -13,15 +13,15 @@
 // between objects by far more.
 #define UPSAMPLE_DEPTH_TOLERANCE 0.05
 
-// `ao` is low resolution (r = AO), `ao_size` its size; `depth` is the pixel's
-// linear depth / far, > 0 (background never reaches here). The texels' depths are read from
-// `linear_depth` (full resolution, times `inverse_far`) at the pixels they shaded rather than from
-// their g: rgba16f rounds a depth by up to 2^-11 of itself, a quarter of the plane tolerance, which
-// weighed two texels of one flat face up to 1.6 times apart. The fetches cost 0.2 ms of the present
-// pass at 1024x768 on llvmpipe. `plane`: xyz the pixel's view-space
-// normal, w how far off its tangent plane, relative to its depth, a texel's point may lie before its
-// weight falls by e beyond the closest texel's (ViewTargets::upsample_plane_tolerance; 0: weigh by
-// depth alone); `unproject` and `full_size` place pixels as view_position_at does.
+// `ao` is low resolution (r = AO), `ao_size` its size; `linear_depth` full resolution, times
+// `inverse_far` in depth / far; `depth` is the pixel's linear depth / far, > 0 (background never
+// reaches here). `plane`: xyz the pixel's view-space normal, w how far off its tangent plane,
+// relative to its depth, a texel's point may lie before its weight falls by e beyond the closest
+// texel's (ViewTargets::upsample_plane_tolerance; 0: weigh by depth alone); `unproject` and
+// `full_size` place pixels as view_position_at does.
+// The texels' depths come from `linear_depth` at the pixels they shaded, not from their g: rgba16f
+// rounds a depth by up to 2^-11 of itself, a quarter of the plane tolerance, which weighed two texels
+// of one flat face up to 1.6 times apart.
 highp float upsampled_ao(highp sampler2D ao, highp sampler2D linear_depth, highp float inverse_far, ivec2 ao_size,
                          ivec2 pixel, highp float depth, highp vec4 plane, highp vec4 unproject, ivec2 full_size) {
   // Low-resolution texel i shaded full-resolution pixel 2i, so pixel p lies at p / 2 in texels: an
@@ -33,12 +33,12 @@ highp float upsampled_ao(highp sampler2D ao, highp sampler2D linear_depth, highp
   // groove's dark floor off the wall beside it. A texel's point is its depth times its pixel's ray
   // (view_position_at), and its pixel lies `offset` pixels from this one, so its height over the
   // plane is (depth_t - depth) dot(ray, n) + depth_t (offset x ray_step) . n.xy: a few multiplies a
-  // texel instead of unprojecting each. The present pass costs 1 ms more at 1024x768 on llvmpipe
-  // (14.3 against 13.3 ms).
+  // texel instead of unprojecting each. The present pass costs about 1.5 ms more at 1024x768 on
+  // llvmpipe (14.9 against 13.4 ms, alternating runs), 0.2 of it the 32-bit depth fetches.
   highp vec3 ray = view_position_at(pixel, 1.0, unproject, full_size);
   highp float facing = dot(ray, plane.xyz);
   highp vec2 step_along_normal = 2.0 * unproject.xy / vec2(full_size) * plane.xy;
-  // exp(-height / (plane.w depth)); the factor common to all four cancels in the weighted mean, so
+  // exp(-|height| / (plane.w depth)); the factor common to all four cancels in the weighted mean, so
   // the heights need no shift by the least. 0 turns the weights off.
   highp float sharpness = plane.w > 0.0 ? 1.0 / (plane.w * depth) : 0.0;
   highp float best_difference = 1e30, best_ao = 0.0;

@@ -101,7 +101,7 @@ std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets&
 shared_layout::UpsampleParams upsample_params(const ViewTargets& targets) {
   shared_layout::UpsampleParams params{};
   params.config = glm::ivec4(targets.settings().width, targets.settings().height, targets.ao_width(), targets.ao_height());
-  // The AO texture's g channel is depth / far: the same 1/far the present pass compared it with.
+  // Depths are compared as depth / far: the same 1/far the present pass scaled them with.
   params.depth = glm::vec4(targets.last_inverse_far, targets.upsample_plane_tolerance(), 0.0f, 0.0f);
   params.unproject = targets.ssao_params.unproject;
   return params;

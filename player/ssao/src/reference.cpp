@@ -27,6 +27,12 @@ float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter
 
 float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
 
+// common.glsl's view_position_at: the view-space point at `depth` behind the centre of `pixel`.
+glm::vec3 view_position_at(glm::ivec2 pixel, float depth, glm::vec4 unproject, glm::ivec2 size) {
+  const glm::vec2 ndc = (glm::vec2(pixel) + 0.5f) / glm::vec2(size) * 2.0f - 1.0f;
+  return {(ndc.x + unproject.z) * depth * unproject.x, (ndc.y + unproject.w) * depth * unproject.y, -depth};
+}
+
 size_t index(glm::ivec2 p, int width) { return static_cast<size_t>(p.y) * static_cast<size_t>(width) + static_cast<size_t>(p.x); }
 
 bool outside(glm::ivec2 p, glm::ivec2 size) { return p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y; }
@@ -42,10 +48,7 @@ struct Frame {
     const glm::ivec2 size = depth.sizes[static_cast<size_t>(level)];
     return depth.at(glm::min(glm::ivec2(texel.x >> level, texel.y >> level), size - 1), level);
   }
-  glm::vec3 view_position(glm::ivec2 texel, float d) const {
-    const glm::vec2 ndc = (glm::vec2(texel) + 0.5f) / glm::vec2(full) * 2.0f - 1.0f;
-    return {(ndc.x + p.unproject.z) * d * p.unproject.x, (ndc.y + p.unproject.w) * d * p.unproject.y, -d};
-  }
+  glm::vec3 view_position(glm::ivec2 texel, float d) const { return view_position_at(texel, d, p.unproject, full); }
 
   float plane_depth(glm::vec2 ndc, glm::vec3 normal, float plane) const {
     const float facing = glm::dot(normal, glm::vec3((ndc.x + p.unproject.z) * p.unproject.x, (ndc.y + p.unproject.w) * p.unproject.y, -1.0f));
@@ -289,12 +292,6 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
                                         const std::vector<glm::vec3>& view_normals) {
   const glm::ivec2 full(params.config.x, params.config.y), small(params.config.z, params.config.w);
   const float plane_tolerance = view_normals.empty() ? 0.0f : params.depth.y;
-  // common.glsl's view_position_at, in the AO texture's depth / far units (distances are relative).
-  const auto view_position_at = [&](glm::ivec2 pixel, float d) {
-    const glm::vec2 ndc = (glm::vec2(pixel) + 0.5f) / glm::vec2(full) * 2.0f - 1.0f;
-    return glm::vec3((ndc.x + params.unproject.z) * d * params.unproject.x,
-                     (ndc.y + params.unproject.w) * d * params.unproject.y, -d);
-  };
   std::vector<AoTexel> out(static_cast<size_t>(full.x) * static_cast<size_t>(full.y), AoTexel(0.0f));
   for (int y = 0; y < full.y; ++y)
     for (int x = 0; x < full.x; ++x) {
@@ -304,7 +301,7 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
       // their points lie off its tangent plane; else the closest in depth.
       const glm::vec2 f(static_cast<float>(x & 1) * 0.5f, static_cast<float>(y & 1) * 0.5f);
       const glm::vec3 normal = plane_tolerance > 0.0f ? view_normals[index({x, y}, full.x)] : glm::vec3(0.0f);
-      const float facing = glm::dot(view_position_at({x, y}, 1.0f), normal);
+      const float facing = glm::dot(view_position_at({x, y}, 1.0f, params.unproject, full), normal);
       const glm::vec2 step_along_normal = 2.0f * glm::vec2(params.unproject.x, params.unproject.y) / glm::vec2(full) *
                                           glm::vec2(normal.x, normal.y);
       const float sharpness = plane_tolerance > 0.0f ? 1.0f / (plane_tolerance * depth) : 0.0f;

@@ -1,4 +1,4 @@
-# Installing on a board (README "Installing on a board"), included by the top-level CMakeLists.txt.
+# Installing on a board (docs/board-and-kms.md, "Installing on a board"), included by the top-level CMakeLists.txt.
 # `cmake --install BUILD` puts the player, its systemd unit and the board files where the unit
 # expects them; `cpack -G DEB` (tools/package) makes the same files a Debian package. Every rule is
 # in the `player` component and the package takes only that one, so an install rule added later for
@@ -41,6 +41,9 @@ install(DIRECTORY ${board_source}/displays DESTINATION ${CMAKE_INSTALL_DATADIR}/
 install(FILES ${board_source}/demo/playlist.toml DESTINATION ${CMAKE_INSTALL_DATADIR}/ssao-player/demo COMPONENT player)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/ssao-player COMPONENT player)
 install(FILES ${board_source}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/ssao-player RENAME board.md COMPONENT player)
+# docs/ beside README.md, so the README's links resolve on the board too.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/ssao-player COMPONENT player
+        FILES_MATCHING PATTERN "*.md")
 # Where the board owner's content goes (/etc/default/ssao-player says how to play it): root's,
 # read by the service, which may not write it.
 install(DIRECTORY DESTINATION /var/lib/ssao-player COMPONENT player)

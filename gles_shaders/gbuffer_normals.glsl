@@ -2,7 +2,7 @@
 // octahedron (Cigolle et al. 2014): rg the shading normal, ba the geometric normal of the face the
 // pixel lies on. The horizon estimator needs the face: with smooth normals the shading hemisphere
 // dips below a facet's plane, and a ray sent there leaves through the facet itself, as the
-// ray-traced reference finds (README, "AO in motion"). Two normals in the target's four channels
+// ray-traced reference finds (docs/ao.md, "AO in motion"). Two normals in the target's four channels
 // cost no bandwidth over one stored as xyz; half floats hold the octahedron's coordinates to within
 // 2^-11, about 0.06 degrees.
 #ifndef GBUFFER_NORMALS_GLSL

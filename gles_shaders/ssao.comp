@@ -154,12 +154,12 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 }
 
 // Taps from 1 to HORIZON_FADE_END radii away count less the farther they are: their elevation (as a
-// pseudo-angle) shrinks linearly to nothing there (README, "The bias" and "AO in motion" hold the
+// pseudo-angle) shrinks linearly to nothing there (docs/ao.md, "The bias" and "AO in motion" hold the
 // sweeps that chose 2.0).
 #define HORIZON_FADE_END 2.0
 // The nearest the first tap of each side comes to the point, in full-resolution pixels: the others
 // are a quarter of the radius apart or more, and missed every crease and groove narrower than that
-// (README, "AO in motion"). Not 1.5: along the axes that lands on a texel's edge, where float
+// (docs/ao.md, "AO in motion"). Not 1.5: along the axes that lands on a texel's edge, where float
 // rounding picks the texel.
 #define HORIZON_NEAR_TAP_PIXELS 1.6
 // A tap's pseudo-angle is at most this times its share (see horizon_occlusion): it binds only past
@@ -172,7 +172,7 @@ highp float arc_integral(highp float h, highp float gamma, highp float cos_norma
 // HORIZON_NEAR_TAP_PIXELS to half a step, where the second one's range begins. Accumulated frames
 // move them all along the slice, so the AO converges on the horizon over every distance from the
 // near one to the radius and not over a few fixed ones, which drew rings around every tall occluder
-// (README, "AO in motion").
+// (docs/ao.md, "AO in motion").
 highp float tap_distance_pixels(int step_index, int steps, highp float radius_pixels, highp float jitter) {
   if (steps == 1) return radius_pixels;
   highp float spacing = radius_pixels / float(steps - 1);
@@ -209,7 +209,7 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     // that period, or the 4x4 tile would hold as few as two distinct slice directions. Evenly spaced:
     // each slice's turn covers only its own pi / slices, so slices offset by the pattern's points
     // (as they were) covered some directions twice over the frames and others never, and the
-    // accumulated AO converged on an error that depended on those points (README, "AO in motion").
+    // accumulated AO converged on an error that depended on those points (docs/ao.md, "AO in motion").
     highp float phi = (kPi * float(slice) + 0.5 * turn_angle) / float(slices);
     highp vec2 direction = vec2(cos(phi), sin(phi));
     highp vec3 direction_view = vec3(direction, 0.0);
@@ -228,7 +228,7 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
     // its hemisphere lies below the facet, and a ray sent there leaves through the facet itself. No
     // tap finds that when the facet is narrower than the near tap's distance, and on a finely
     // tessellated mesh with smooth normals it is most of the AO that speckles from face to face
-    // (armadillo's bias -0.0056 without it; README, "AO in motion"). The face's trace on the slice
+    // (armadillo's bias -0.0056 without it; docs/ao.md, "AO in motion"). The face's trace on the slice
     // rises above the tangent on one side (share as for a tap; the trace points along the tangent,
     // so no elevation passes the normal) and sinks on the other.
     highp vec3 face_trace = cross(axis, face);
@@ -267,7 +267,7 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
         highp float elevation = min(along >= 0.0 ? share : 2.0 - share, HORIZON_ELEVATION_CAP * share);
         // A surface seen beyond the radius is the front of what may reach within it (the hidden
         // underside of a ball above the floor): it counts, fading to nothing at HORIZON_FADE_END
-        // radii. Cutting it off at the radius made the AO too light (README, "The bias").
+        // radii. Cutting it off at the radius made the AO too light (docs/ao.md, "The bias").
         if (distance > 1.0) elevation *= (HORIZON_FADE_END - distance) / (HORIZON_FADE_END - 1.0);
         if (side == 0) elevation_plus = max(elevation_plus, elevation);
         else elevation_minus = max(elevation_minus, elevation);

@@ -257,8 +257,8 @@ TEST_P(Pipeline, PlaneFacingTheCameraGetsTheEstimatorsPlaneValue) {
 
 // builtin:corner in closed form: floor y = 0 and walls x = 0, z = 0, each the square [0, 2]^2 of its
 // plane. Depth and normal at any image point come from intersecting the eye ray with the three squares,
-// not from the G-buffer, and each estimator's expectation is computed here from its definition (README,
-// "How the AO is computed") with the very kernel, turns and radius the pass used. This is independent
+// not from the G-buffer, and each estimator's expectation is computed here from its definition (docs/ao.md,
+// "The passes and estimators") with the very kernel, turns and radius the pass used. This is independent
 // of both ssao.comp and reference.cpp, so it fails an error made in both (which the GPU-vs-CPU
 // comparison cannot see).
 struct AnalyticCorner {

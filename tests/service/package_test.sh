@@ -47,6 +47,7 @@ dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|; s|/$||' | grep -v '^$
   echo /usr/lib/udev/rules.d/60-ssao-player-gpio.rules
   echo /usr/share/doc/ssao-player/README.md
   echo /usr/share/doc/ssao-player/board.md
+  (cd "$source_dir" && find docs -type d -o -type f -name '*.md') | sed 's|^|/usr/share/doc/ssao-player/|'
   for file in raspberry-pi-4.toml raspberry-pi-5.toml mock.toml buttons.script; do echo "/usr/share/ssao-player/board/$file"; done
   for file in "$source_dir"/board/displays/*; do echo "/usr/share/ssao-player/board/displays/$(basename "$file")"; done
   echo /usr/share/ssao-player/demo/playlist.toml

@@ -272,7 +272,7 @@ TEST(Tables, CompiledTablesAreTheGeneratorsOutput) {
 }
 
 TEST(Tables, RadiusTableIsTheBaseRadiusHalvedFourTimes) {
-  // The paper's multi-resolution SSAO uses 5 radii; ours are R, R/2, R/4, R/8, R/16 (README, "Tables").
+  // The paper's multi-resolution SSAO uses 5 radii; ours are R, R/2, R/4, R/8, R/16 (docs/ao.md, "Tables").
   const auto scales = ssao::radius_scales();
   ASSERT_EQ(scales.size(), 5u);
   ASSERT_EQ(scales.size(), static_cast<size_t>(SSAO_MAX_RADII));
@@ -333,7 +333,7 @@ TEST(Blur, WeightsAreAGaussianOfTheStatedSigma) {
         EXPECT_NEAR(params.weights[i].x / sum, expected[static_cast<size_t>(i)], 1e-6) << "sigma " << sigma << " radius " << radius << " tap " << i;
       for (int i = radius + 1; i <= BLUR_MAX_RADIUS; ++i) EXPECT_EQ(params.weights[i].x, 0.0f) << "beyond the radius, tap " << i;
     }
-  // The paper's blur as this project configures it by default: radius 4, sigma 2 (README, "Blur").
+  // The paper's blur as this project configures it by default: radius 4, sigma 2 (docs/ao.md, "Blur").
   const ssao::BlurSettings defaults;
   EXPECT_EQ(defaults.radius, 4);
   EXPECT_EQ(defaults.sigma, 2.0f);

@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
                  "Camera distance as a multiple of the distance at which the scene just fits (far views shrink the radii on screen)")
       ->check(CLI::Range(0.2, 100.0))->capture_default_str();
   cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")->check(CLI::Range(8, 1 << 16))->capture_default_str();
-  cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see README); default: paper and default");
+  cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see docs/ao.md); default: paper and default");
   cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each saving turned off in turn)")
       ->check(CLI::IsMember({"quick", "full", "ablation"}));
   cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")->check(CLI::IsMember(platform::names()))->capture_default_str();

@@ -1,7 +1,7 @@
 #pragma once
 // Display description files (TOML): `type = "modules"` (HoloVizio style, see modules.h) or
-// `type = "quilt"` (Looking Glass style, naming the vendor's visual.json, see quilt.h). The README's
-// "Light field displays" section lists every key.
+// `type = "quilt"` (Looking Glass style, naming the vendor's visual.json, see quilt.h). docs/light-field.md
+// lists every key.
 //
 // Errors: functions return false and `error` says "FILE:LINE:COLUMN: KEY: expected ..., got ...";
 // nothing throws.

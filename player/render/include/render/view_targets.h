@@ -35,7 +35,7 @@ class ViewTargets {
 
   bool modules() const { return modules_; }
   // upsample.glsl's plane tolerance. Measured on the six shared scenes after 16 frames (player render
-  // + aoref, README "AO in motion"): the error's high-frequency noise fell from 0.00247 to 0.00236 and
+  // + aoref, docs/ao.md "AO in motion"): the error's high-frequency noise fell from 0.00247 to 0.00236 and
   // the MAE from 0.0055 to 0.0054 (one frame's: 0.0035 and 0.0076, both a little lower too); 0.001 did
   // no better, 0.004 less well. Light field modules weigh by depth alone: their pixels are not one
   // pinhole's, so unproject does not place them.

@@ -18,22 +18,22 @@ std::string_view name(Precision precision);
 std::optional<Precision> parse_precision(std::string_view text);
 
 // The defaults are the configuration aobench put on the time-error front ahead of the paper's
-// (sphere, 8 samples x 5 radii, Gaussian blur): see README, "Run time against error".
+// (sphere, 8 samples x 5 radii, Gaussian blur): see docs/ao.md, "Run time against error".
 struct AoSettings {
   Estimator estimator = Estimator::horizon;
   Precision precision = Precision::highp;
   int samples = 30;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
   // Horizon: taps on each side of a slice, 1..32 (at most samples / 2): one 1.6 pixels from the point,
   // the rest spread evenly to the radius. The horizon is the highest of the taps, so too few of them
-  // miss it and the AO comes out too light (README, "The bias"). Three slices of five: accumulation
-  // over frames turns the slices, and no frame has taps to spare for a fourth (README, "AO in motion").
+  // miss it and the AO comes out too light (docs/ao.md, "The bias"). Three slices of five: accumulation
+  // over frames turns the slices, and no frame has taps to spare for a fourth (docs/ao.md, "AO in motion").
   int steps = 5;
   int radii = 1;                      // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
   float bias = 0.03f;                 // depth bias as a fraction of each radius
   bool half_resolution = true;        // AO at half width and height, then depth-aware upsampling
   // Large radii read coarser levels of the depth chain. Off by default: on llvmpipe, where it was
-  // measured, building the chain costs more than the coarser reads save (README, "Run time against error").
+  // measured, building the chain costs more than the coarser reads save (docs/ao.md, "Run time against error").
   bool depth_chain = false;
   bool skip_radii = true;             // drop radii under a pixel or far beyond the scene, per frame
   // Background pixels return after one depth read (whole work groups of them at once). Off only to

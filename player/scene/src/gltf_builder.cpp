@@ -1,0 +1,319 @@
+#include "gltf_builder.h"
+
+#include "gltf_accessors.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace scene::gltf {
+namespace {
+
+class Builder {
+ public:
+  Builder(const tinygltf::Model& model, LoadReport& report) : model_(model), report_(report) {
+    scene_.materials.push_back(Material{});  // index 0: glTF's default material
+  }
+
+  Scene build(const std::string& name) {
+    scene_.name = name;
+    for (const std::string& extension : model_.extensionsRequired)
+      fail("extensionsRequired: '" + extension + "' is not supported by this player");
+    const tinygltf::Scene* shown = nullptr;
+    int shown_index = 0;
+    if (!model_.scenes.empty()) {
+      const int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+      if (static_cast<size_t>(index) >= model_.scenes.size())
+        fail("scene: " + std::to_string(index) + " out of range (there are " + std::to_string(model_.scenes.size()) + ")");
+      shown = &model_.scenes[static_cast<size_t>(index)];
+      shown_index = index;
+    }
+    // glTF allows a file without scenes ("nothing to render at load time", 3.5.1): the kiosk has
+    // nothing it could rightly choose to show, so it says so rather than guessing at root nodes.
+    if (!shown || shown->nodes.empty()) fail("scenes: the file has no scene with nodes to show");
+    visit(shown->nodes, "scenes[" + std::to_string(shown_index) + "].nodes");
+    if (scene_.instances.empty()) fail("meshes: the scene contains no triangles to render");
+    update_bounds(scene_);
+    if (!std::isfinite(scene_.bounds.radius()))
+      fail("nodes: the transformed scene bounds are not finite (a transform overflows)");
+    return std::move(scene_);
+  }
+
+ private:
+  static glm::dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
+    auto check = [&](const std::vector<double>& values, const char* field) {
+      for (double value : values)
+        if (!std::isfinite(value)) fail(where + "." + field + ": expected finite numbers");
+    };
+    check(node.matrix, "matrix");
+    check(node.translation, "translation");
+    check(node.rotation, "rotation");
+    check(node.scale, "scale");
+    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
+    glm::dmat4 transform(1.0);
+    if (node.translation.size() == 3) transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
+    if (node.rotation.size() == 4) {
+      const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      transform *= glm::mat4_cast(glm::normalize(rotation));
+    }
+    if (node.scale.size() == 3) transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
+    return transform;
+  }
+
+  // Depth-first over the node tree with an explicit stack: a valid file may chain 100,000 nodes,
+  // far deeper than the thread's stack allows recursion. on_path marks the nodes from the root to
+  // the current one (a child among them is a cycle), seen every node entered (a second entry is a
+  // second parent); both are flags per node, so a deep chain costs linear time.
+  void visit(const std::vector<int>& roots, const std::string& roots_field) {
+    struct OpenNode {
+      int node;
+      glm::dmat4 world;
+      size_t next_child;
+    };
+    std::vector<OpenNode> stack;
+    std::vector<char> on_path(model_.nodes.size(), 0), seen(model_.nodes.size(), 0);
+    auto enter = [&](int index, const glm::dmat4& parent, const std::string& field) {
+      if (index < 0 || static_cast<size_t>(index) >= model_.nodes.size())
+        fail(field + ": node index " + std::to_string(index) + " out of range (there are " +
+             std::to_string(model_.nodes.size()) + ")");
+      const size_t at = static_cast<size_t>(index);
+      if (on_path[at]) fail("nodes[" + std::to_string(index) + "].children: the node hierarchy has a cycle through this node");
+      if (seen[at]) fail("nodes[" + std::to_string(index) + "]: the node has more than one parent (glTF requires a tree)");
+      seen[at] = on_path[at] = 1;
+      const std::string where = "nodes[" + std::to_string(index) + "]";
+      const tinygltf::Node& node = model_.nodes[at];
+      const glm::dmat4 world = parent * local_transform(node, where);
+      if (node.mesh >= 0) {
+        if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
+          fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " +
+               std::to_string(model_.meshes.size()) + ")");
+        for (int mesh : meshes_of(node.mesh)) scene_.instances.push_back({mesh, world});
+      }
+      stack.push_back({index, world, 0});
+    };
+    for (size_t r = 0; r < roots.size(); ++r) {
+      enter(roots[r], glm::dmat4(1.0), roots_field + "[" + std::to_string(r) + "]");
+      while (!stack.empty()) {
+        OpenNode& top = stack.back();
+        const std::vector<int>& children = model_.nodes[static_cast<size_t>(top.node)].children;
+        if (top.next_child == children.size()) {
+          on_path[static_cast<size_t>(top.node)] = 0;
+          stack.pop_back();
+          continue;
+        }
+        const size_t c = top.next_child++;
+        const glm::dmat4 parent = top.world;  // enter() grows the stack, which may move `top`
+        enter(children[c], parent, "nodes[" + std::to_string(top.node) + "].children[" + std::to_string(c) + "]");
+      }
+    }
+  }
+
+  // The Scene meshes of glTF mesh `index`, one per triangle primitive, converted once and shared by instances.
+  const std::vector<int>& meshes_of(int index) {
+    auto found = converted_.find(index);
+    if (found != converted_.end()) return found->second;
+    std::vector<int> ids;
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(index)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const std::string where = "meshes[" + std::to_string(index) + "].primitives[" + std::to_string(p) + "]";
+      const tinygltf::Primitive& primitive = mesh.primitives[p];
+      if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          primitive.mode != TINYGLTF_MODE_TRIANGLE_FAN && primitive.mode != -1) {
+        report_.warnings.push_back(where + ": mode " + std::to_string(primitive.mode) + " is not triangles; skipped");
+        continue;
+      }
+      Mesh converted = convert(primitive, where);
+      if (converted.indices.empty()) continue;
+      scene_.meshes.push_back(std::move(converted));
+      ids.push_back(static_cast<int>(scene_.meshes.size()) - 1);
+    }
+    return converted_[index] = ids;
+  }
+
+  Mesh convert(const tinygltf::Primitive& primitive, const std::string& where) {
+    const auto position_at = primitive.attributes.find("POSITION");
+    if (position_at == primitive.attributes.end()) fail(where + ".attributes: POSITION is required");
+    const auto positions = read_floats<3>(model_, position_at->second, where + ".attributes.POSITION",
+                                          {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    const size_t vertex_count = positions.size();
+
+    // glTF 2.0, 3.7.2.1: all attribute accessors of a primitive have the same count; checked for the
+    // attributes the player does not read as well, as Khronos' validator does.
+    for (const auto& [name, accessor] : primitive.attributes)
+      if (accessor >= 0 && static_cast<size_t>(accessor) < model_.accessors.size() &&
+          model_.accessors[static_cast<size_t>(accessor)].count != vertex_count)
+        fail(where + ".attributes." + name + ": count " + std::to_string(model_.accessors[static_cast<size_t>(accessor)].count) +
+             " differs from POSITION's " + std::to_string(vertex_count));
+
+    std::vector<glm::vec3> normals;
+    if (auto at = primitive.attributes.find("NORMAL"); at != primitive.attributes.end()) {
+      normals = read_floats<3>(model_, at->second, where + ".attributes.NORMAL", {TINYGLTF_COMPONENT_TYPE_FLOAT});
+      if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
+    }
+    std::vector<glm::vec2> uvs;
+    if (auto at = primitive.attributes.find("TEXCOORD_0"); at != primitive.attributes.end()) {
+      uvs = read_floats<2>(model_, at->second, where + ".attributes.TEXCOORD_0",
+                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+      if (uvs.size() != vertex_count) fail(where + ".attributes.TEXCOORD_0: count differs from POSITION's");
+    }
+
+    std::vector<uint32_t> indices;
+    if (primitive.indices >= 0) {
+      const View view = checked_view(model_, primitive.indices, where + ".indices",
+                                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}, 1);
+      indices.resize(view.count);
+      for (size_t i = 0; i < view.count; ++i) {
+        const double value = component(view, i, 0);
+        if (value >= static_cast<double>(vertex_count))
+          fail(where + ".indices: element " + std::to_string(i) + " is " + std::to_string(static_cast<uint64_t>(value)) +
+               ", expected less than the vertex count " + std::to_string(vertex_count));
+        indices[i] = static_cast<uint32_t>(value);
+      }
+    } else {
+      indices.resize(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) indices[i] = static_cast<uint32_t>(i);
+    }
+    indices = to_triangle_list(indices, primitive.mode);
+
+    Mesh mesh;
+    mesh.material = material(primitive.material, where);
+    if (normals.empty()) {
+      // The spec: without NORMAL, flat normals. Each triangle gets its own three vertices.
+      mesh.vertices.reserve(indices.size());
+      for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const glm::vec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
+        const glm::dvec3 cross = glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
+        const double length = glm::length(cross);
+        const glm::vec3 normal = length > 0.0 && std::isfinite(length) ? glm::vec3(cross / length) : glm::vec3(0.0f);
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t source = indices[t + static_cast<size_t>(k)];
+          mesh.vertices.push_back({positions[source], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[source]});
+          mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
+        }
+      }
+    } else {
+      mesh.vertices.resize(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) {
+        const float length = glm::length(normals[i]);
+        // Non-unit normals are normalised; zero ones stay zero and the shader faces them to the eye.
+        const glm::vec3 normal = length > 1e-30f && std::isfinite(length) ? normals[i] / length : glm::vec3(0.0f);
+        mesh.vertices[i] = {positions[i], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[i]};
+      }
+      mesh.indices = std::move(indices);
+    }
+    mesh.min = glm::vec3(std::numeric_limits<float>::max());
+    mesh.max = glm::vec3(std::numeric_limits<float>::lowest());
+    for (const Vertex& v : mesh.vertices) {
+      mesh.min = glm::min(mesh.min, v.position);
+      mesh.max = glm::max(mesh.max, v.position);
+    }
+    return mesh;
+  }
+
+  static std::vector<uint32_t> to_triangle_list(const std::vector<uint32_t>& in, int mode) {
+    std::vector<uint32_t> out;
+    // glTF 2.0, 3.7.2.1: strip triangle i is {v_i, v_(i+1+i%2), v_(i+2-i%2)} (every other one flipped
+    // back to counter-clockwise), fan triangle i is {v_(i+1), v_(i+2), v_0}; kept in exactly that order.
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < in.size(); ++i) out.insert(out.end(), {in[i], in[i + 1 + i % 2], in[i + 2 - i % 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      for (size_t i = 0; i + 2 < in.size(); ++i) out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
+    } else {
+      out.assign(in.begin(), in.begin() + static_cast<std::ptrdiff_t>(in.size() / 3 * 3));
+    }
+    return out;
+  }
+
+  int material(int index, const std::string& where) {
+    if (index < 0) return 0;
+    if (static_cast<size_t>(index) >= model_.materials.size())
+      fail(where + ".material: " + std::to_string(index) + " out of range (there are " +
+           std::to_string(model_.materials.size()) + ")");
+    if (auto found = materials_.find(index); found != materials_.end()) return found->second;
+    const tinygltf::Material& source = model_.materials[static_cast<size_t>(index)];
+    const std::string field = "materials[" + std::to_string(index) + "]";
+    Material material;
+    material.double_sided = source.doubleSided;
+    const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+    if (factor.size() != 4) fail(field + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
+    for (int c = 0; c < 4; ++c) {
+      if (!std::isfinite(factor[static_cast<size_t>(c)]))
+        fail(field + ".pbrMetallicRoughness.baseColorFactor: expected finite numbers");
+      material.base_color[c] = static_cast<float>(std::clamp(factor[static_cast<size_t>(c)], 0.0, 1.0));
+    }
+    const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
+    if (info.index >= 0) {
+      if (info.texCoord != 0)
+        report_.warnings.push_back(field + ".pbrMetallicRoughness.baseColorTexture.texCoord: only set 0 is used");
+      material.base_color_texture = texture(info.index, field + ".pbrMetallicRoughness.baseColorTexture.index");
+    }
+    scene_.materials.push_back(material);
+    return materials_[index] = static_cast<int>(scene_.materials.size()) - 1;
+  }
+
+  int texture(int index, const std::string& field) {
+    if (static_cast<size_t>(index) >= model_.textures.size())
+      fail(field + ": " + std::to_string(index) + " out of range (there are " + std::to_string(model_.textures.size()) + ")");
+    if (auto found = textures_.find(index); found != textures_.end()) return found->second;
+    const tinygltf::Texture& source = model_.textures[static_cast<size_t>(index)];
+    const std::string where = "textures[" + std::to_string(index) + "]";
+    if (source.source < 0 || static_cast<size_t>(source.source) >= model_.images.size())
+      fail(where + ".source: " + std::to_string(source.source) + " is not an image index");
+    const tinygltf::Image& image = model_.images[static_cast<size_t>(source.source)];
+    // An image that could not be used is drawn white; load_gltf has put the reason in the warnings.
+    if (image.image.empty()) return white_texture();
+    const size_t expected = static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 4;
+    if (image.width <= 0 || image.height <= 0 || image.component != 4 || image.bits != 8 || image.image.size() != expected)
+      fail("images[" + std::to_string(source.source) + "]: expected decoded 8-bit RGBA pixels");
+    Texture texture;
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.rgba = image.image;
+    if (source.sampler >= 0 && static_cast<size_t>(source.sampler) < model_.samplers.size()) {
+      const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(source.sampler)];
+      texture.mag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::nearest : Filter::linear;
+      // Absent or outside its list (the schema check warned), minFilter means the default: mipmapped.
+      texture.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+      texture.repeat_s = sampler.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      texture.repeat_t = sampler.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    } else if (source.sampler >= 0) {
+      fail(where + ".sampler: " + std::to_string(source.sampler) + " out of range");
+    }
+    scene_.textures.push_back(std::move(texture));
+    return textures_[index] = static_cast<int>(scene_.textures.size()) - 1;
+  }
+
+  int white_texture() {
+    if (white_ < 0) {
+      Texture white;
+      white.width = white.height = 1;
+      white.rgba = {255, 255, 255, 255};
+      white.mipmaps = false;
+      scene_.textures.push_back(std::move(white));
+      white_ = static_cast<int>(scene_.textures.size()) - 1;
+    }
+    return white_;
+  }
+
+  const tinygltf::Model& model_;
+  LoadReport& report_;
+  int white_ = -1;
+  Scene scene_;
+  std::map<int, std::vector<int>> converted_;
+  std::map<int, int> materials_, textures_;
+};
+
+}  // namespace
+
+Scene build_scene(const tinygltf::Model& model, LoadReport& report, const std::string& name) {
+  return Builder(model, report).build(name);
+}
+
+}  // namespace scene::gltf

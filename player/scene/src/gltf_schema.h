@@ -1,0 +1,21 @@
+#pragma once
+// The parts of glTF's JSON schema the player relies on, checked on the parsed JSON before tinygltf
+// reads it: tinygltf keeps a default for a property whose value has the wrong type or sign (a
+// negative byteOffset silently becomes 0) and does not range-check indices it follows itself (an
+// image's bufferView is read without a bounds check). Each returns the first problem as
+// "field: what is wrong; expected ...", or empty.
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+#include <vector>
+
+namespace scene::gltf {
+
+// `warnings` receives what glTF-Validator reports as a warning and the loader can do without: a
+// sampler value outside its list means the default for that field.
+std::string schema_problem(const nlohmann::json& root, std::vector<std::string>& warnings);
+
+// External files may only be named relative to the scene's folder and may not climb out of it.
+std::string uri_problem(const nlohmann::json& root);
+
+}  // namespace scene::gltf

@@ -190,9 +190,9 @@ class Player {
   void handle_buttons(double now);
   void handle_platform_events(bool& stop);
   void act(hal::Action action, double now);
-  void request_scenes(const playback::Frame& frame);
+  void request_scenes(const playback::Cue& frame);
   void step_uploads();
-  void render_frame(const playback::Frame& frame);
+  void render_frame(const playback::Cue& frame);
   void update_status(bool force);
   void set_leds();
   void report(const std::string& error);
@@ -440,7 +440,7 @@ void Player::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, 
   watch_content();
 }
 
-void Player::request_scenes(const playback::Frame& frame) {
+void Player::request_scenes(const playback::Cue& frame) {
   for (int item : {frame.item, frame.next_item}) {
     if (item < 0) continue;
     const std::string& spec = key_of(item);
@@ -728,7 +728,7 @@ void Player::service_camera(double now) {
   }
 }
 
-void Player::render_frame(const playback::Frame& frame) {
+void Player::render_frame(const playback::Cue& frame) {
   State state = State::playing;
   const render::SceneGpu* gpu = nullptr;
   if (frame.item < 0) {
@@ -992,7 +992,7 @@ int Player::run() {
         state_ = State::no_display;
         update_status(true);
       }
-      const playback::Frame frame = timeline_->at(now, wall_start_ + now);
+      const playback::Cue frame = timeline_->at(now, wall_start_ + now);
       last_item_ = frame.item;
       request_scenes(frame);
       step_uploads();
@@ -1014,7 +1014,7 @@ int Player::run() {
       next_check_ = now + board_.self_check_interval_s;
       start_self_check(now);
     }
-    playback::Frame frame = timeline_->at(now, wall_start_ + now);
+    playback::Cue frame = timeline_->at(now, wall_start_ + now);
     request_scenes(frame);
     step_uploads();
     if (manual_clock_) {

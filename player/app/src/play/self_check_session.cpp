@@ -35,7 +35,7 @@ void SelfCheckSession::start(double now, const render::PresentTarget& present, i
     std::copy_n(&rgba[i * 4], 3, &image_.pixels[i * 3]);
   layout_ = hal::FiducialLayout::for_display(w, h, ++sequence_);
   hal::draw_fiducials(image_, layout_);
-  // Uploaded in the framebuffer's own encoding, so the blit copies the bytes as they are.
+  // Bottom row first, as GL stores textures; in the target's encoding, so the blit copies the bytes as they are.
   std::vector<uint8_t> flipped(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 255);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)

@@ -51,14 +51,19 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
     ss << in.rdbuf();
     script = parse_button_script(ss.str(), board.mock_button_script);
   }
-  d.buttons = std::make_unique<MockButtons>(std::move(specs), std::move(script), clock);
+  auto buttons = std::make_unique<MockButtons>(std::move(specs), std::move(script), clock);
+  d.mock_buttons = buttons.get();
+  d.buttons = std::move(buttons);
   d.status = std::make_unique<Status>(led_names, std::make_unique<RecordingLedSink>(clock, led_names.size()), clock,
                                       board.status_file);
+  std::unique_ptr<MockCamera> camera;
   if (!board.mock_camera_images.empty()) {
-    d.camera = std::make_unique<MockCamera>(board.mock_camera_images, clock);
+    camera = std::make_unique<MockCamera>(board.mock_camera_images, clock);
   } else if (board.camera) {
-    d.camera = std::make_unique<MockCamera>(typical_camera_model(), clock);
+    camera = std::make_unique<MockCamera>(typical_camera_model(), clock);
   }
+  d.mock_camera = camera.get();
+  d.camera = std::move(camera);
   return d;
 }
 

@@ -55,7 +55,9 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
     if (options.board_file.empty() && backend == Backend::Mock) {
       std::vector<MockButtonSpec> specs;
       for (const auto& b : board.buttons) specs.push_back({b.name, b.timing});
-      dev.buttons = std::make_unique<MockButtons>(specs, parse_button_script(kBuiltinScript, "<built-in script>"), clock);
+      auto buttons = std::make_unique<MockButtons>(specs, parse_button_script(kBuiltinScript, "<built-in script>"), clock);
+      dev.mock_buttons = buttons.get();
+      dev.buttons = std::move(buttons);
     }
   } catch (const ConfigError& e) {
     out << "hal-test: " << e.what() << "\n";

@@ -27,7 +27,7 @@ Playlist make(std::vector<double> durations, double fade = 0, bool loop = true) 
   return pl;
 }
 
-Frame at(Timeline& tl, double t) { return tl.at(t0 + t, wall0 + t); }
+Cue at(Timeline& tl, double t) { return tl.at(t0 + t, wall0 + t); }
 
 struct Expect {
   double t;  // seconds after construction
@@ -38,7 +38,7 @@ struct Expect {
 void check(Timeline& tl, const std::vector<Expect>& table) {
   for (const Expect& e : table) {
     SCOPED_TRACE("t = " + std::to_string(e.t));
-    const Frame f = at(tl, e.t);
+    const Cue f = at(tl, e.t);
     EXPECT_EQ(f.item, e.item);
     EXPECT_NEAR(f.item_time, e.item_time, 1e-9);
   }
@@ -71,7 +71,7 @@ TEST(Timeline, EarlierNowIsTreatedAsEqual) {
 
 TEST(Timeline, NextItemAndSequence) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
-  Frame f = at(tl, 0);
+  Cue f = at(tl, 0);
   EXPECT_EQ(f.next_item, 1);
   EXPECT_EQ(f.sequence, 1u);
   f = at(tl, 12);
@@ -84,7 +84,7 @@ TEST(Timeline, NextItemAndSequence) {
 
 TEST(Timeline, NoLoopFinishesHoldingTheLastPose) {
   Timeline tl(make({4, 6}, 1.0, false), t0, wall0);
-  Frame f = at(tl, 9.9);
+  Cue f = at(tl, 9.9);
   EXPECT_EQ(f.item, 1);
   EXPECT_EQ(f.next_item, -1);
   EXPECT_FALSE(f.finished);
@@ -137,7 +137,7 @@ TEST(Timeline, PauseFreezesItemTimeAndCamera) {
   pl.items[0].camera.period_s = 8;
   pl.items[0].camera.azimuth_deg = 0;
   Timeline tl(pl, t0, wall0);
-  Frame f = at(tl, 2);
+  Cue f = at(tl, 2);
   EXPECT_NEAR(f.camera.azimuth_deg, 90, 1e-9);
   tl.pause(t0 + 2);
   EXPECT_TRUE(tl.paused());
@@ -162,7 +162,7 @@ TEST(Timeline, NextPreviousRestart) {
   Timeline tl(make({10, 10, 10}), t0, wall0);
   EXPECT_EQ(at(tl, 0).item, 0);
   tl.next(t0 + 1);
-  Frame f = at(tl, 1);
+  Cue f = at(tl, 1);
   EXPECT_EQ(f.item, 1);
   EXPECT_EQ(f.item_time, 0.0);
   EXPECT_EQ(f.sequence, 2u);
@@ -193,7 +193,7 @@ TEST(Timeline, ButtonsAtTheEndsOfANonLoopingPlaylist) {
   check(tl, {{0.5, 0, 0}});
   tl.next(t0 + 1);
   tl.next(t0 + 2);  // past the last item: finished
-  Frame f = at(tl, 2);
+  Cue f = at(tl, 2);
   EXPECT_TRUE(f.finished);
   EXPECT_EQ(f.item, 1);
   EXPECT_EQ(f.item_time, 10.0);
@@ -209,7 +209,7 @@ TEST(Timeline, ButtonsAtTheEndsOfANonLoopingPlaylist) {
 TEST(Timeline, UnplayableItemsAreSkipped) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
   tl.set_playable(1, false);
-  Frame f = at(tl, 0);
+  Cue f = at(tl, 0);
   EXPECT_EQ(f.next_item, 2);
   check(tl, {{3.9, 0, 3.9}, {4, 2, 0}, {13.9, 2, 9.9}, {14, 0, 0}, {18, 2, 0}});
   tl.set_playable(1, true);
@@ -220,7 +220,7 @@ TEST(Timeline, CurrentItemMarkedUnplayableGivesWay) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
   at(tl, 1);
   tl.set_playable(0, false);  // its scene failed to load
-  Frame f = at(tl, 1.5);
+  Cue f = at(tl, 1.5);
   EXPECT_EQ(f.item, 1);
   EXPECT_EQ(f.item_time, 0.0);
   EXPECT_TRUE(f.cut);
@@ -232,7 +232,7 @@ TEST(Timeline, NothingPlayable) {
   at(tl, 1);
   tl.set_playable(0, false);
   tl.set_playable(1, false);
-  Frame f = at(tl, 2);
+  Cue f = at(tl, 2);
   EXPECT_EQ(f.item, -1);
   EXPECT_EQ(f.next_item, -1);
   EXPECT_TRUE(f.cut);
@@ -251,7 +251,7 @@ TEST(Timeline, AStallOfTenHoursLandsOnTheRightItem) {
   // Cycle 20 s: 36000 s is 1800 cycles, 13 s more is item 2 at 3 s.
   Timeline tl(make({4, 6, 10}), t0, wall0);
   at(tl, 1);
-  Frame f = at(tl, 36013);
+  Cue f = at(tl, 36013);
   EXPECT_EQ(f.item, 2);
   EXPECT_NEAR(f.item_time, 3, 1e-6);
   EXPECT_EQ(f.sequence, 1u + 1800 * 3 + 2);
@@ -275,9 +275,9 @@ TEST(Timeline, StallLandsWhereSteppingLands) {
   Timeline stepped(pl, t0, wall0), stalled(pl, t0, wall0);
   stepped.set_playable(2, false);
   stalled.set_playable(2, false);
-  Frame s;
+  Cue s;
   for (double t = 0; t <= 5000; t += 0.25) s = at(stepped, t);
-  const Frame j = at(stalled, 5000);
+  const Cue j = at(stalled, 5000);
   EXPECT_EQ(j.item, s.item);
   EXPECT_NEAR(j.item_time, s.item_time, 1e-6);
   EXPECT_EQ(j.sequence, s.sequence);
@@ -312,20 +312,20 @@ TEST(Timeline, WallclockPlayersAgreeWithoutTalking) {
   Timeline b(pl, 77777.0, wall0 + 3);  // started later, on another machine's monotonic clock
   for (double w : {5.0, 5.5, 13.0, 19.99, 20.0, 36013.0}) {
     SCOPED_TRACE(w);
-    const Frame fa = a.at(100.0 + w, wall0 + w), fb = b.at(77777.0 + w, wall0 + w);
+    const Cue fa = a.at(100.0 + w, wall0 + w), fb = b.at(77777.0 + w, wall0 + w);
     EXPECT_EQ(fa.item, fb.item);
     EXPECT_NEAR(fa.item_time, fb.item_time, 1e-9);
     EXPECT_NEAR(fa.camera.azimuth_deg, fb.camera.azimuth_deg, 1e-6);
   }
   const std::vector<Expect> table = {{36013 + 1, 2, 4}, {36020, 0, 0}, {36020 + 4.5, 1, 0.5}};
   for (const Expect& e : table) {
-    const Frame f = a.at(100.0 + e.t, wall0 + e.t);
+    const Cue f = a.at(100.0 + e.t, wall0 + e.t);
     EXPECT_EQ(f.item, e.item);
     EXPECT_NEAR(f.item_time, e.item_time, 1e-6);
   }
   // The position comes from the wall clock alone: a 10-hour stall of the caller lands on the slot.
   Timeline c(pl, 0.0, wall0);
-  const Frame f = c.at(36000.0, wall0 + 36000 + 13);
+  const Cue f = c.at(36000.0, wall0 + 36000 + 13);
   EXPECT_EQ(f.item, 2);
   EXPECT_NEAR(f.item_time, 3, 1e-6);
   EXPECT_EQ(f.next_item, 0);
@@ -336,7 +336,7 @@ TEST(Timeline, WallclockUnplayableSlotShowsTheNextItem) {
   pl.schedule = Schedule::wallclock;
   Timeline tl(pl, t0, wall0);
   tl.set_playable(1, false);
-  Frame f = at(tl, 1);
+  Cue f = at(tl, 1);
   EXPECT_EQ(f.next_item, 2);
   const std::uint64_t seq = f.sequence;
   f = at(tl, 5);  // slot 1 shows item 2
@@ -364,7 +364,7 @@ TEST(Timeline, WallclockButtonsDetachUntilRestart) {
   tl.next(t0 + 36);
   check(tl, {{36, 0, 0}});
   tl.restart(t0 + 37);  // back on the schedule: wall position 37 mod 20 = 17 is item 2 at 7
-  const Frame f = at(tl, 37);
+  const Cue f = at(tl, 37);
   EXPECT_EQ(f.item, 2);
   EXPECT_NEAR(f.item_time, 7, 1e-9);
   EXPECT_TRUE(f.cut);
@@ -419,7 +419,7 @@ TEST(Timeline, CutExactlyAtChanges) {
 
 TEST(Timeline, ReplaceKeepsTheCurrentItem) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
-  Frame f = at(tl, 5);
+  Cue f = at(tl, 5);
   ASSERT_EQ(f.item, 1);
   const std::uint64_t seq = f.sequence;
 
@@ -468,7 +468,7 @@ TEST(Timeline, ReplaceShorterItemMovesOn) {
 
 TEST(Timeline, EmptyPlaylistPlaysNothing) {
   Timeline tl(Playlist{}, t0, wall0);
-  const Frame f = at(tl, 1);
+  const Cue f = at(tl, 1);
   EXPECT_EQ(f.item, -1);
   EXPECT_EQ(f.next_item, -1);
   tl.next(t0 + 2);
@@ -541,7 +541,7 @@ TEST(Timeline, FrameCameraFollowsTheItem) {
   pl.items[1].camera.azimuth_deg = 12;
   pl.items[1].camera.elevation_deg = -30;
   Timeline tl(pl, t0, wall0);
-  Frame f = at(tl, 5);
+  Cue f = at(tl, 5);
   EXPECT_NEAR(f.camera.azimuth_deg, 30 + 90, 1e-9);
   f = at(tl, 15);
   EXPECT_EQ(f.item, 1);

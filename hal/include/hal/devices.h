@@ -13,6 +13,9 @@
 
 namespace hal {
 
+class MockButtons;
+class MockCamera;
+
 enum class Backend : std::uint8_t { Linux, Mock };
 bool parse_backend(std::string_view text, Backend& out);
 
@@ -21,6 +24,10 @@ struct Devices {
   std::unique_ptr<Status> status;    // never null; a missing LED is skipped
   std::unique_ptr<Camera> camera;    // null only when the board has no camera
   std::vector<std::string> problems;
+  // The mock backend's devices again (null with linux), for what drives them: a window's keys, a
+  // test's camera script, the frame the synthetic camera films.
+  MockButtons* mock_buttons = nullptr;
+  MockCamera* mock_camera = nullptr;
 };
 
 Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clock);

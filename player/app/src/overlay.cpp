@@ -1,7 +1,10 @@
 #include "overlay.h"
 
+#include "blit_source.h"
+
 #include <algorithm>
 #include <cctype>
+#include <utility>
 
 namespace app {
 namespace {
@@ -110,16 +113,11 @@ void Overlay::update(std::string_view state, const std::vector<Lamp>& lamps, boo
     y += kLine;
   }
   if (width_ != texture_width_ || height_ != texture_height_ || srgb_target != texture_srgb_) {
-    texture_ = gl::make_texture();
-    gl::api.BindTexture(GL_TEXTURE_2D, texture_.id());
-    // The panel's bytes are meant as written: a blit decodes an sRGB source and encodes into an
-    // sRGB target, so the texture takes the target's encoding and the bytes arrive unchanged.
-    gl::api.TexStorage2D(GL_TEXTURE_2D, 1, srgb_target ? GL_SRGB8_ALPHA8 : GL_RGBA8, width_, height_);
+    // The panel's bytes are meant as written: the texture takes the target's encoding.
+    BlitSource source = make_blit_source(width_, height_, srgb_target);
+    texture_ = std::move(source.texture);
+    fbo_ = std::move(source.framebuffer);
     texture_srgb_ = srgb_target;
-    fbo_ = gl::make_framebuffer();
-    gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
-    gl::api.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_.id(), 0);
-    gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     texture_width_ = width_;
     texture_height_ = height_;
   }

@@ -299,11 +299,11 @@ float Timeline::fade(double t, double d, bool has_next) const {
   return static_cast<float>(std::clamp(f, 0.0, 1.0));
 }
 
-Frame Timeline::at(double now, double wall_now) {
+Cue Timeline::at(double now, double wall_now) {
   advance_clock(now);
   last_wall_ = wall_now;
   last_wall_mono_ = last_now_;
-  Frame f;
+  Cue f;
   double d = 0;
   if (mode_ == Mode::wallclock) {
     run_wallclock(wall_now);

@@ -112,14 +112,27 @@ struct Options {
   std::string drm_atomic = "auto";
 };
 
+// What a platform is, for the choices a caller makes before (or without) opening it.
+struct Capabilities {
+  // Frames go to a screen a person watches, so they are paced by it and the playlist runs on real
+  // time; without, frames are read back and a run can step a reproducible manual clock.
+  bool shows_frames_on_a_display = false;
+  // A window among others on a desktop, with no board beside it: the board's LEDs and state are
+  // drawn over the frame unless asked otherwise (play --overlay auto).
+  bool desktop_window = false;
+};
+
 // One row per platform; the only place platforms are listed.
 struct Entry {
   std::string_view name;
   std::string_view summary;  // for --help
   bool tried_by_auto;        // headless ones are; a window is only made when asked for
   std::unique_ptr<Platform> (*create)(const Options& options, std::string& error);
+  Capabilities capabilities;
 };
 std::span<const Entry> registry();
+// The registry row's capabilities of `name`; an unknown name has none (create() then says why).
+Capabilities capabilities(std::string_view name);
 
 // For "auto" with `display`: kms where a DRM device with KMS exists and no display server runs
 // (neither WAYLAND_DISPLAY nor DISPLAY is set), window where one runs, egl otherwise. `why` says which

@@ -7,7 +7,7 @@
 //
 // Sequential schedule: items in playlist order, or with shuffle = true in a new permutation every
 // pass (deterministic from the seed and the pass number; with 3 or more items a pass never starts
-// with the item the previous one ended with). loop = false: after the last item Frame.finished is
+// with the item the previous one ended with). loop = false: after the last item Cue.finished is
 // set and the last item holds its final pose. A stalled caller lands on the right item in one
 // call: whole passes are skipped arithmetically.
 //
@@ -27,7 +27,7 @@
 // Camera: turntable azimuth = azimuth_deg + 360 * item_time / period_s; still: fixed; orbit:
 // Catmull-Rom through the keys per channel (non-uniform tangents, zero tangents at both ends so the
 // camera eases into the hold after the last key; elevation and distance are kept within the keys'
-// range). Frame azimuths are wrapped to [0, 360).
+// range). Cue azimuths are wrapped to [0, 360).
 
 #include <cstdint>
 #include <limits>
@@ -41,7 +41,8 @@ struct Camera {  // what scene::Framing takes
   double azimuth_deg = 30, elevation_deg = 20, distance = 1, fov_deg = 45;
 };
 
-struct Frame {
+// What the playlist says should show at a time: the item, how far into it, the camera and the fade.
+struct Cue {
   int item = -1;           // index into playlist().items; -1: nothing playable
   double item_time = 0;    // seconds since this item started (frozen while paused)
   Camera camera;
@@ -52,14 +53,14 @@ struct Frame {
   std::uint64_t sequence = 0;  // + 1 at every item start (the first is 1); a kept item in replace() keeps it
 };
 
-// Where `path` puts the camera `t` seconds into an item (the Frame's camera).
+// Where `path` puts the camera `t` seconds into an item (the Cue's camera).
 Camera camera_at(const CameraPath& path, double t);
 
 class Timeline {
  public:
   Timeline(Playlist playlist, double now, double wall_now);
 
-  Frame at(double now, double wall_now);
+  Cue at(double now, double wall_now);
 
   // Buttons. next(): the item that follows starts now (loop = false, last item: finished).
   // previous(): within the first 2 s of an item, the item before it (at the very first item of a
@@ -76,7 +77,7 @@ class Timeline {
   void resume(double now);
   bool paused() const { return paused_; }
 
-  // Items whose scene failed to load are skipped; if none is playable, Frame.item = -1. Takes effect
+  // Items whose scene failed to load are skipped; if none is playable, Cue.item = -1. Takes effect
   // at the next at(): a current item marked unplayable gives way to the next playable one.
   void set_playable(int item, bool playable);
 

@@ -1,0 +1,352 @@
+#include "play/play_loop.h"
+
+#include "image_io.h"
+
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Milliseconds since the process started (kernel start time, 10 ms resolution).
+double ms_since_process_start() {
+  std::ifstream stat("/proc/self/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const size_t close = text.rfind(')');
+  if (close == std::string::npos) return -1.0;
+  std::istringstream fields(text.substr(close + 2));
+  std::string field;
+  for (int i = 3; i < 22 && fields >> field; ++i) {
+  }
+  unsigned long long start_ticks = 0;
+  if (!(fields >> start_ticks)) return -1.0;
+  timespec boot{};
+  clock_gettime(CLOCK_BOOTTIME, &boot);
+  const double now_s = static_cast<double>(boot.tv_sec) + static_cast<double>(boot.tv_nsec) * 1e-9;
+  return (now_s - static_cast<double>(start_ticks) / static_cast<double>(sysconf(_SC_CLK_TCK))) * 1000.0;
+}
+
+}  // namespace
+
+PlayLoop::PlayLoop(const PlayPieces& pieces, std::string playlist_path, std::shared_ptr<const playback::Playlist> playlist,
+                   long long frames)
+    : p_(pieces), playlist_path_(std::move(playlist_path)), playlist_(std::move(playlist)), frame_(frames) {}
+
+void PlayLoop::update_status(bool force) {
+  p_.status.announce_state();  // before the period: a state change reaches systemd at once
+  if (!p_.status.due(force)) return;
+  gpu_.look_for_errors(p_.status);
+  hal::StatusReport report;
+  if (timeline_ && last_item_ >= 0) report.item = playlist_->items[static_cast<size_t>(last_item_)].scene;
+  report.frames = static_cast<std::uint64_t>(frame_);
+  report.warnings = p_.devices.problems;  // devices missing since start: the player goes on without them
+  p_.check.append_warnings(report.warnings);
+  p_.scenes.append_warnings(report.warnings);
+  report.self_check = p_.check.last_verdict();
+  p_.status.publish(std::move(report));
+}
+
+void PlayLoop::watch_content() {
+  std::set<std::string> folders;
+  if (!playlist_path_.empty()) folders.insert(fs::path(playlist_path_).parent_path().string());
+  for (const playback::Item& item : playlist_->items) {
+    if (item.scene.rfind("builtin:", 0) != 0) folders.insert(fs::path(item.scene).parent_path().string());
+    if (!item.display.empty()) folders.insert(fs::path(item.display).parent_path().string());
+  }
+  std::vector<std::string> problems;
+  p_.watch.watch(folders, problems);
+  for (const std::string& problem : problems) p_.status.report(problem);
+}
+
+void PlayLoop::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now) {
+  playlist_ = std::move(playlist);
+  timeline_->replace(*playlist_, now);
+  p_.scenes.set_playlist(*playlist_, timeline_.get());
+  p_.drawer.configure_again();
+  watch_content();
+}
+
+void PlayLoop::drain_content() {
+  changes_.clear();
+  p_.watch.drain(changes_);
+  for (const ContentWatch::Change& change : changes_) {
+    if (change.path != playlist_path_) {
+      p_.scenes.reload(change.path);
+    } else if (change.deleted) {
+      p_.status.report(change.path + ": the playlist was deleted (the last good one keeps playing)");
+    } else {
+      p_.loader.load_playlist(change.path);
+    }
+  }
+}
+
+void PlayLoop::drain_loader() {
+  Loader::Result result;
+  while (p_.loader.take(result)) {
+    if (result.kind == Loader::Result::Kind::scene) {
+      p_.scenes.take(result, *timeline_);
+    } else if (!result.error.empty()) {
+      p_.status.report(result.error + " (the last good playlist keeps playing)");
+    } else {
+      // Scenes it names anew load when their items come up; changed scene files come through inotify.
+      apply_playlist(result.playlist, p_.clock.now());
+    }
+  }
+}
+
+PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
+  std::array<platform::Event, 16> events;
+  const size_t n = p_.platform.drain_events(events);
+  for (size_t i = 0; i < n; ++i) {
+    const platform::Event& event = events[i];
+    switch (event.type) {
+      case platform::EventType::close_requested: closed = true; break;
+      case platform::EventType::resized: {
+        std::string error;
+        if (!p_.drawer.resized(error)) p_.status.report(error);
+        break;
+      }
+      case platform::EventType::display_lost:
+        p_.out << "display: " << p_.platform.not_presenting_reason() << " at " << p_.clock.now()
+               << " s; the playlist plays on unseen\n"
+               << std::flush;
+        p_.kiosk.display_lost();
+        update_status(true);
+        break;
+      case platform::EventType::display_found:
+        p_.out << "display: " << p_.platform.description() << " at " << p_.clock.now() << " s\n" << std::flush;
+        display_found_s_ = p_.clock.now();
+        p_.drawer.configure_again();
+        break;
+      case platform::EventType::warning: p_.status.report(p_.platform.last_error()); break;
+      case platform::EventType::remake: remake_reason_ = p_.platform.last_error(); break;
+      case platform::EventType::key_press:
+      case platform::EventType::key_release:
+        p_.buttons.key(event.key, event.type == platform::EventType::key_press);
+        break;
+    }
+  }
+  return remake_reason_.empty() ? Next::go_on : Next::remake;
+}
+
+PlayLoop::Next PlayLoop::drain_events(bool& closed) {
+  const SignalSource::Received signals = p_.signals.drain();
+  for (int i = 0; i < signals.reloads; ++i) {  // SIGHUP: everything again
+    if (!playlist_path_.empty()) p_.loader.load_playlist(playlist_path_);
+    p_.scenes.reload_all();
+  }
+  if (signals.check) p_.check.request();
+  if (signals.stop) return Next::stop;
+  drain_content();
+  drain_loader();
+  return drain_platform(closed);
+}
+
+void PlayLoop::act(hal::Action action, double now) {
+  p_.status.note_action(action);
+  switch (action) {
+    case hal::Action::none: break;
+    case hal::Action::next: timeline_->next(now); break;
+    case hal::Action::previous: timeline_->previous(now); break;
+    case hal::Action::restart: timeline_->restart(now); break;
+    case hal::Action::pause:
+      if (timeline_->paused()) timeline_->resume(now);
+      else timeline_->pause(now);
+      break;
+    case hal::Action::ao: p_.drawer.toggle_ao(p_.options.settings.ao); break;
+    case hal::Action::output: p_.drawer.next_output(); break;
+    case hal::Action::check: p_.check.request(); break;
+  }
+}
+
+void PlayLoop::load_for(const playback::Cue& cue) {
+  p_.scenes.request(cue);
+  if (p_.scenes.step_uploads(p_.drawer.shown_key())) p_.drawer.configure_again();
+}
+
+// No display to show on (kms: none connected, or another process holds it): the playlist clock
+// runs on and scenes keep loading, so a display that comes back shows the right item.
+void PlayLoop::play_unseen(double now) {
+  if (p_.kiosk.display_lost()) update_status(true);
+  const playback::Cue cue = timeline_->at(now, p_.clock.wall_start() + now);
+  last_item_ = cue.item;
+  load_for(cue);
+  if (p_.check.service_camera(now)) update_status(true);
+  // The loop is alive and waiting, which is all the watchdog checks; READY=1 too, so a player
+  // behind a switched-off TV starts as a service instead of timing out.
+  p_.status.service().frame_presented(p_.clock.monotonic());
+  update_status(false);
+}
+
+playback::Cue PlayLoop::cue_at(double now) {
+  playback::Cue cue = timeline_->at(now, p_.clock.wall_start() + now);
+  load_for(cue);
+  // A reproducible run waits for the item's scene instead of showing frames of "loading".
+  while (p_.clock.manual() && cue.item >= 0 && !p_.scenes.settled(cue.item)) {
+    PollSet::wait_one(p_.loader.fd(), 100);
+    drain_loader();
+    cue = timeline_->at(now, p_.clock.wall_start() + now);
+    load_for(cue);
+  }
+  return cue;
+}
+
+void PlayLoop::draw(const playback::Cue& cue) {
+  KioskState::Shown shown = KioskState::Shown::nothing_playable;
+  p_.drawer.prepare_nothing();
+  if (cue.item >= 0) {
+    const CachedScene* scene = p_.scenes.ready(cue.item);
+    shown = scene != nullptr ? KioskState::Shown::scene : KioskState::Shown::loading;
+    if (scene != nullptr)
+      p_.drawer.prepare(cue, p_.scenes.key_of(cue.item), *scene, playlist_->items[static_cast<size_t>(cue.item)], p_.status);
+  }
+  if (p_.kiosk.frame_drawn(shown, timeline_->paused())) update_status(true);  // sets the LEDs too
+
+  p_.drawer.begin_frame();
+  if (p_.check.checking()) p_.check.draw(p_.drawer.present(), p_.drawer.width(), p_.drawer.height());
+  else p_.drawer.draw(cue.fade);
+  p_.drawer.end_frame(!p_.check.checking(), p_.status);
+  p_.drawer.draw_overlay(p_.kiosk.name(), *p_.devices.status);
+}
+
+void PlayLoop::wait_for_events(double next_frame) {
+  // It sleeps only until the next frame is due.
+  int timeout_ms = 0;
+  if (!p_.platform.presenting()) timeout_ms = p_.platform.poll_interval_ms();
+  else if (!p_.clock.manual() && p_.options.fps > 0.0)
+    timeout_ms = std::max(0, static_cast<int>((next_frame - p_.clock.now()) * 1000.0));
+  poll_.wait({p_.signals.fd(), p_.watch.fd(), p_.loader.fd(), p_.platform.event_fd(), p_.devices.buttons->fd(),
+              p_.devices.status->fd(), p_.devices.camera ? p_.devices.camera->fd() : -1},
+             timeout_ms);
+}
+
+void PlayLoop::read_buttons(double now) {
+  actions_.clear();
+  p_.buttons.read(*p_.devices.buttons, actions_);
+  for (hal::Action action : actions_) act(action, now);
+  if (!p_.devices.buttons->last_error().empty()) p_.status.report(p_.devices.buttons->last_error());
+}
+
+std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool& stop, int& exit_code) {
+  p_.check.start_when_due(now, p_.drawer.present(), p_.drawer.width(), p_.drawer.height());
+  const playback::Cue cue = cue_at(now);
+  last_item_ = cue.item;
+  draw(cue);
+  std::string error;
+  if (!p_.options.out_dir.empty()) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame-%06lld.png", frame_);
+    if (!p_.drawer.write_frame((fs::path(p_.options.out_dir) / name).string(), error)) {
+      p_.err << "error: " << error << "\n";
+      return 1;
+    }
+  }
+  p_.drawer.finish();
+  // The last frame as the GPU drew it onto the surface, before it goes to the display.
+  if (!p_.options.snapshot.empty() && frame_ + 1 == p_.options.frames && !p_.drawer.write_surface(p_.options.snapshot, error)) {
+    p_.err << "error: --snapshot: " << error << "\n";
+    return 1;
+  }
+  if (!p_.platform.present()) {
+    p_.err << "error: " << p_.platform.last_error() << "\n";
+    exit_code = 3;
+    stop = true;
+  } else {
+    p_.status.service().frame_presented(p_.clock.monotonic());  // only presented frames feed the watchdog
+  }
+  if (frame_ == 0) p_.out << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+  if (display_found_s_ >= 0.0 && p_.platform.presenting()) {
+    p_.out << "display: showing frames again " << (p_.clock.now() - display_found_s_) * 1000.0 << " ms after it came\n"
+           << std::flush;
+    display_found_s_ = -1.0;
+  }
+  if (p_.check.service_camera(now)) update_status(true);
+  p_.status.frame_presented({frame_, now, cue.item, p_.check.camera_lost(), p_.scenes.swaps()});
+  ++frame_;
+  update_status(false);
+  p_.clock.advance(frame_interval);
+  if (p_.options.frames > 0 && frame_ >= p_.options.frames) {
+    stop = true;
+    return std::nullopt;
+  }
+  // After a reset every draw is dropped until the context is made anew.
+  remake_reason_ = gpu_.reset_reason(frame_ - 1);
+  if (!remake_reason_.empty()) {
+    p_.err << "warning: " << remake_reason_ << "\n";
+    return kRemake;
+  }
+  if (gpu_.lost_for_good()) {
+    p_.err << "error: the GL context is lost and this driver does not tell of GPU resets, so nothing can be rebuilt; exiting ("
+           << kGpuLost << ") for the service manager to restart the player\n";
+    return kGpuLost;
+  }
+  stop = stop || cue.finished;
+  return std::nullopt;
+}
+
+int PlayLoop::run() {
+  p_.scenes.set_playlist(*playlist_, nullptr);
+  timeline_ = std::make_unique<playback::Timeline>(*playlist_, 0.0, p_.clock.wall_start());
+  watch_content();
+  update_status(true);
+
+  bool stop = false;
+  int exit_code = 0;
+  const double frame_interval = p_.options.fps > 0.0 ? 1.0 / p_.options.fps : 1.0 / 30.0;
+  double next_frame = 0.0;
+  while (!stop) {
+    wait_for_events(next_frame);
+    const Next next = drain_events(stop);
+    if (next == Next::stop) break;
+    if (next == Next::remake) return kRemake;
+    const double now = p_.clock.now();
+    read_buttons(now);
+    p_.devices.status->update();
+    if (!p_.platform.presenting()) {
+      play_unseen(now);
+      continue;
+    }
+    if (p_.options.fps > 0.0 && now < next_frame) {
+      if (p_.check.service_camera(now)) update_status(true);
+      continue;
+    }
+    next_frame = std::max(next_frame + frame_interval, now);
+    if (const std::optional<int> code = show_frame(now, frame_interval, stop, exit_code)) return *code;
+  }
+  return finish(exit_code);
+}
+
+int PlayLoop::finish(int exit_code) {
+  p_.status.service().stopping();
+  if (!p_.options.drm_writeback.empty() && exit_code == 0) {
+    // What the display shows now, the last frame presented, read back from the display hardware.
+    std::vector<std::uint8_t> rgba;
+    platform::Size size;
+    std::string error;
+    if (p_.platform.capture_scanout(rgba, size, error) && write_png(p_.options.drm_writeback, size.width, size.height, rgba, error)) {
+      p_.out << "scanout of frame " << frame_ - 1 << " captured to " << p_.options.drm_writeback << "\n";
+    } else {
+      p_.err << "error: --drm-writeback: " << error << "\n";
+      exit_code = 1;
+    }
+  }
+  p_.kiosk.stopped();
+  update_status(true);
+  p_.out << "played " << frame_ << " frames, " << p_.status.errors().size() << " error(s)\n";
+  return exit_code;
+}
+
+}  // namespace app

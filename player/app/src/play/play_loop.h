@@ -1,0 +1,95 @@
+#pragma once
+// The play loop: one poll over every event source, then a frame when one is due. It owns nothing:
+// play_command.cpp opens the pieces and hands them over; the loop passes events between them.
+#include "app/play_command.h"
+#include "hal/devices.h"
+#include "loader.h"
+#include "play/event_sources.h"
+#include "play/frame_drawer.h"
+#include "play/gpu_recovery.h"
+#include "play/kiosk_state.h"
+#include "play/play_clock.h"
+#include "play/scene_cache.h"
+#include "play/self_check_session.h"
+#include "play/status_reporter.h"
+#include "platform/platform.h"
+#include "playback/timeline.h"
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace app {
+
+// What a session is made of, opened by play_command.cpp.
+struct PlayPieces {
+  const PlayOptions& options;
+  std::ostream& out;
+  std::ostream& err;
+  PlayClock& clock;
+  hal::Devices& devices;
+  KioskState& kiosk;
+  StatusReporter& status;
+  SignalSource& signals;
+  ContentWatch& watch;
+  ButtonActions& buttons;
+  Loader& loader;
+  platform::Platform& platform;
+  FrameDrawer& drawer;
+  SceneCache& scenes;
+  SelfCheckSession& check;
+};
+
+class PlayLoop {
+ public:
+  // `playlist_path`: the playlist file, watched and reloaded (empty: scenes from the command line).
+  PlayLoop(const PlayPieces& pieces, std::string playlist_path, std::shared_ptr<const playback::Playlist> playlist,
+           long long frames);
+  // Plays until stopped: an exit code for run_play, or kRemake (see gpu_recovery.h).
+  int run();
+  long long frames() const { return frame_; }
+  const std::string& remake_reason() const { return remake_reason_; }
+
+ private:
+  enum class Next : std::uint8_t { go_on, stop, remake };
+
+  void update_status(bool force);
+  void apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now);
+  void watch_content();
+  // Every source's pending events: stop now (a signal), remake, or go on; `closed`: the window
+  // was closed, so this frame is the last.
+  Next drain_events(bool& closed);
+  void drain_content();
+  void drain_loader();
+  Next drain_platform(bool& closed);
+  void wait_for_events(double next_frame);
+  void read_buttons(double now);
+  void act(hal::Action action, double now);
+  // Asks for the cue's scenes and makes this frame's share of the uploads.
+  void load_for(const playback::Cue& cue);
+  void play_unseen(double now);
+  playback::Cue cue_at(double now);
+  void draw(const playback::Cue& cue);
+  // Draws, writes and presents a frame. An exit code to return at once, or none; `stop`: this
+  // frame was the last (--frames, the playlist's end, a display that took no frame).
+  std::optional<int> show_frame(double now, double frame_interval, bool& stop, int& exit_code);
+  int finish(int exit_code);
+
+  PlayPieces p_;
+  std::string playlist_path_;
+  std::shared_ptr<const playback::Playlist> playlist_;
+  std::unique_ptr<playback::Timeline> timeline_;
+  GpuWatch gpu_;
+  PollSet poll_;
+  std::vector<ContentWatch::Change> changes_;
+  std::vector<hal::Action> actions_;
+  long long frame_;
+  int last_item_ = -1;
+  double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown
+  std::string remake_reason_;
+};
+
+}  // namespace app

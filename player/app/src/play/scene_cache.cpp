@@ -1,0 +1,120 @@
+#include "play/scene_cache.h"
+
+#include "play/status_reporter.h"
+
+#include <algorithm>
+#include <iterator>
+#include <ostream>
+
+namespace app {
+
+SceneCache::SceneCache(Loader& loader, const gl::Caps& caps, StatusReporter& status, std::ostream& err)
+    : loader_(loader), caps_(caps), status_(status), err_(err) {}
+
+void SceneCache::set_playlist(const playback::Playlist& playlist, playback::Timeline* timeline) {
+  keys_.clear();
+  for (const playback::Item& item : playlist.items) keys_.push_back(load_key(item));
+  for (auto it = scenes_.begin(); it != scenes_.end();) {
+    bool used = false;
+    for (const std::string& key : keys_) used = used || key == it->first;
+    it = used ? std::next(it) : scenes_.erase(it);
+  }
+  if (timeline == nullptr) return;
+  for (size_t i = 0; i < keys_.size(); ++i) {
+    auto found = scenes_.find(keys_[i]);
+    if (found != scenes_.end() && !found->second.error.empty()) timeline->set_playable(static_cast<int>(i), false);
+  }
+}
+
+void SceneCache::request(const playback::Cue& cue) {
+  for (int item : {cue.item, cue.next_item}) {
+    if (item < 0) continue;
+    const std::string& key = key_of(item);
+    CachedScene& scene = scenes_[key];
+    if (!scene.requested) {
+      scene.requested = true;
+      loader_.load_scene(key);
+    }
+  }
+}
+
+void SceneCache::set_playable(const std::string& key, bool playable, playback::Timeline& timeline) const {
+  for (size_t i = 0; i < keys_.size(); ++i)
+    if (keys_[i] == key) timeline.set_playable(static_cast<int>(i), playable);
+}
+
+void SceneCache::take(Loader::Result& result, playback::Timeline& timeline) {
+  auto found = scenes_.find(result.path);
+  if (found == scenes_.end()) return;  // no longer in the playlist
+  CachedScene& scene = found->second;
+  if (!result.error.empty()) {
+    status_.report(result.error);
+    if (!scene.gpu) {  // never loaded: skip its items; a reload that fails keeps the old content
+      scene.error = result.error;
+      set_playable(result.path, false, timeline);
+    }
+    return;
+  }
+  scene.error.clear();
+  scene.warnings = std::move(result.warnings);
+  for (const std::string& warning : scene.warnings) err_ << "warning: " << warning << "\n";
+  set_playable(result.path, true, timeline);
+  scene.incoming_display = result.display;
+  scene.incoming = std::make_unique<render::SceneGpu>();
+  scene.incoming->begin(result.scene, caps_);
+  scene.incoming_bounds = result.scene->bounds;
+}
+
+// A budget per frame keeps an item change or a reload from showing as a hitch.
+bool SceneCache::step_uploads(const std::string& shown) {
+  constexpr size_t kBudget = 8u << 20;
+  size_t left = kBudget;
+  bool shown_swapped = false;
+  for (auto& [key, scene] : scenes_) {
+    if (!scene.incoming || left == 0) continue;
+    const size_t before = scene.incoming->bytes();
+    const bool done = scene.incoming->step(left);
+    left -= std::min(left, std::max<size_t>(scene.incoming->bytes() - before, 1));
+    if (!done) continue;
+    if (scene.incoming->failed()) {
+      status_.report(key + ": " + scene.incoming->error());
+      scene.incoming.reset();
+      continue;
+    }
+    if (scene.gpu) ++swaps_;
+    scene.gpu = std::move(scene.incoming);
+    scene.bounds = scene.incoming_bounds;
+    scene.display = scene.incoming_display;
+    shown_swapped = shown_swapped || key == shown;
+  }
+  return shown_swapped;
+}
+
+const CachedScene* SceneCache::ready(int item) const {
+  const auto found = scenes_.find(key_of(item));
+  if (found == scenes_.end() || !found->second.gpu || !found->second.gpu->ready()) return nullptr;
+  return &found->second;
+}
+
+bool SceneCache::settled(int item) const {
+  const auto found = scenes_.find(key_of(item));
+  if (found == scenes_.end()) return false;
+  const CachedScene& scene = found->second;
+  return !scene.error.empty() || (scene.gpu && scene.gpu->ready() && !scene.incoming);
+}
+
+void SceneCache::reload_all() {
+  for (const auto& [key, scene] : scenes_) loader_.load_scene(key);
+}
+
+void SceneCache::reload(const std::string& path) {
+  // A deleted scene or display fails to load and is reported; the last good version keeps playing.
+  for (const auto& [key, scene] : scenes_)
+    if (scene_of(key) == path || display_of(key) == path) loader_.load_scene(key);
+}
+
+void SceneCache::append_warnings(std::vector<std::string>& out) const {
+  for (const auto& [key, scene] : scenes_) out.insert(out.end(), scene.warnings.begin(), scene.warnings.end());
+}
+
+}  // namespace app

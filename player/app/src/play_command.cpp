@@ -298,7 +298,7 @@ class Player {
   bool overlay_on_ = false;
   std::vector<Overlay::Lamp> lamps_;
 
-  hal::UniqueFd signal_fd_, inotify_fd_;
+  base::UniqueFd signal_fd_, inotify_fd_;
   ServiceNotifier service_;  // systemd: READY, WATCHDOG, STATUS, STOPPING (board/ssao-player.service)
   std::map<int, std::string> watched_dirs_;  // watch descriptor -> folder
 };

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "base/names.h"
+
 namespace hal {
 
 std::string GpioLine::describe() const {
@@ -14,13 +16,14 @@ std::string GpioLine::describe() const {
 
 namespace {
 
-struct ActionName {
-  Action action;
-  std::string_view name;
-};
-constexpr ActionName kActionNames[] = {{Action::none, "none"},       {Action::next, "next"},   {Action::previous, "previous"},
-                                       {Action::pause, "pause"},     {Action::ao, "ao"},       {Action::output, "output"},
-                                       {Action::restart, "restart"}, {Action::check, "check"}};
+constexpr base::Name<Action> kActionNames[] = {{Action::none, "none"},       {Action::next, "next"},   {Action::previous, "previous"},
+                                              {Action::pause, "pause"},     {Action::ao, "ao"},       {Action::output, "output"},
+                                              {Action::restart, "restart"}, {Action::check, "check"}};
+static_assert(base::in_enum_order(kActionNames));
+
+constexpr base::Name<Bias> kBiasNames[] = {
+    {Bias::AsIs, "as-is"}, {Bias::Disable, "disable"}, {Bias::PullUp, "pull-up"}, {Bias::PullDown, "pull-down"}};
+static_assert(base::in_enum_order(kBiasNames));
 
 struct ButtonDefault {
   std::string_view name;
@@ -34,26 +37,9 @@ constexpr ButtonDefault kButtonDefaults[] = {{"play", Action::pause, Action::res
 
 }  // namespace
 
-std::string_view to_string(Action a) {
-  for (const ActionName& entry : kActionNames)
-    if (entry.action == a) return entry.name;
-  return "?";
-}
-
-bool parse_action(std::string_view text, Action& out) {
-  for (const ActionName& entry : kActionNames)
-    if (entry.name == text) {
-      out = entry.action;
-      return true;
-    }
-  return false;
-}
-
-std::string action_names() {
-  std::string text;
-  for (const ActionName& entry : kActionNames) text += (text.empty() ? "" : ", ") + std::string(entry.name);
-  return text;
-}
+std::string_view to_string(Action a) { return base::name_of(kActionNames, a); }
+bool parse_action(std::string_view text, Action& out) { return base::parse_name(kActionNames, text, out); }
+std::string action_names() { return base::names_text(kActionNames); }
 
 namespace {
 
@@ -113,12 +99,7 @@ GpioLine read_line(const Fields& f) {
   if (l.line_name.empty() && (l.chip.empty() || l.offset < 0))
     f.fail("line", "a line name, or 'chip' and 'offset'");
   l.active_low = f.boolean("active_low", false);
-  const std::string bias = f.str("bias", "as-is");
-  if (bias == "as-is") l.bias = Bias::AsIs;
-  else if (bias == "disable") l.bias = Bias::Disable;
-  else if (bias == "pull-up") l.bias = Bias::PullUp;
-  else if (bias == "pull-down") l.bias = Bias::PullDown;
-  else f.fail("bias", "one of as-is, disable, pull-up, pull-down");
+  if (!base::parse_name(kBiasNames, f.str("bias", "as-is"), l.bias)) f.fail("bias", "one of " + base::names_text(kBiasNames));
   return l;
 }
 
@@ -212,7 +193,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     c.device = f.str("device", "", true);
     c.width = static_cast<int>(f.integer("width", c.width, 16, 8192));
     c.height = static_cast<int>(f.integer("height", c.height, 16, 8192));
-    if (!parse_pixel_format(f.str("format", "auto"), c.format)) f.fail("format", "one of auto, mjpeg, yuyv, rgb24");
+    if (!parse_pixel_format(f.str("format", "auto"), c.format)) f.fail("format", "one of " + pixel_format_names());
     c.buffers = static_cast<int>(f.integer("buffers", c.buffers, 2, 32));
     c.reopen_interval = std::chrono::milliseconds(f.integer("reopen_interval_ms", c.reopen_interval.count(), 100, 600000));
     c.frame_timeout = std::chrono::milliseconds(f.integer("frame_timeout_ms", c.frame_timeout.count(), 100, 600000));

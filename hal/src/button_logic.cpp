@@ -4,17 +4,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/names.h"
+
 namespace hal {
 
-std::string_view to_string(ButtonAction a) {
-  switch (a) {
-    case ButtonAction::Press: return "press";
-    case ButtonAction::Release: return "release";
-    case ButtonAction::LongPress: return "long-press";
-    case ButtonAction::Repeat: return "repeat";
-  }
-  return "?";
-}
+namespace {
+constexpr base::Name<ButtonAction> kButtonActionNames[] = {{ButtonAction::Press, "press"},
+                                                          {ButtonAction::Release, "release"},
+                                                          {ButtonAction::LongPress, "long-press"},
+                                                          {ButtonAction::Repeat, "repeat"}};
+static_assert(base::in_enum_order(kButtonActionNames));
+}  // namespace
+
+std::string_view to_string(ButtonAction a) { return base::name_of(kButtonActionNames, a); }
 
 namespace detail {
 

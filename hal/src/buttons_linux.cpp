@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <system_error>
 
+#include "base/errno_text.h"
 #include "fd.h"
 #include "gpio_devices.h"
 #include "gpio_line.h"
@@ -79,7 +80,7 @@ std::size_t EdgeButtons::read(std::span<ButtonEvent> out) {
 
 void EdgeButtons::fail(Line& l, int err) {
   epoll_ctl(epoll_.get(), EPOLL_CTL_DEL, l.fd, nullptr);
-  error_ = "button '" + names_[l.button] + "': GPIO " + l.name + ": reading edge events: " + errno_text(err) +
+  error_ = "button '" + names_[l.button] + "': GPIO " + l.name + ": reading edge events: " + base::errno_text(err) +
            (err == ENODEV ? " (chip removed?)" : "") + "; button disabled";
   // Its level is unknown from now on: treat it as let go, so the app is not left with a held button.
   line_level(l.button, false, clock_.now());

@@ -1,6 +1,7 @@
-#include <charconv>
+#include <limits>
 #include <sstream>
 
+#include "base/parse.h"
 #include "button_logic.h"
 #include "fd.h"
 #include "hal/board.h"
@@ -28,8 +29,7 @@ std::vector<ScriptStep> parse_button_script(const std::string& text, const std::
     if (!(fields >> ms_text)) continue;  // blank or comment
     const std::string where = source_name + ":" + std::to_string(number) + ": ";
     long long ms = 0;
-    const auto [end, ec] = std::from_chars(ms_text.data(), ms_text.data() + ms_text.size(), ms);
-    if (ec != std::errc() || end != ms_text.data() + ms_text.size() || ms < 0)
+    if (!base::parse_int(ms_text, 0, std::numeric_limits<long long>::max(), ms))
       throw ConfigError(where + "time: expected non-negative milliseconds, got '" + ms_text + "'");
     if (ms > kMaxScriptMs)
       throw ConfigError(where + "time: expected at most " + std::to_string(kMaxScriptMs) + " milliseconds (100 years), got " +
@@ -58,7 +58,7 @@ struct MockButtons::Impl {
   detail::ButtonLogic logic;
   const Clock& clock;
   Nanos start;
-  UniqueFd timer = detail::make_timer();
+  base::UniqueFd timer = detail::make_timer();
 
   Impl(std::vector<MockButtonSpec> buttons, std::vector<ScriptStep> steps, const Clock& c)
       : logic(timings(buttons)), clock(c), start(c.now()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/names.h"
 #include "fd.h"
 #include "hal/board.h"
 #include "hal/mock.h"
@@ -10,34 +11,19 @@
 
 namespace hal {
 
-std::string_view to_string(CameraState s) {
-  switch (s) {
-    case CameraState::Closed: return "closed";
-    case CameraState::Streaming: return "streaming";
-    case CameraState::Lost: return "lost";
-  }
-  return "?";
-}
+namespace {
+constexpr base::Name<CameraState> kCameraStateNames[] = {
+    {CameraState::Closed, "closed"}, {CameraState::Streaming, "streaming"}, {CameraState::Lost, "lost"}};
+static_assert(base::in_enum_order(kCameraStateNames));
+constexpr base::Name<PixelFormat> kPixelFormatNames[] = {
+    {PixelFormat::Auto, "auto"}, {PixelFormat::Mjpeg, "mjpeg"}, {PixelFormat::Yuyv, "yuyv"}, {PixelFormat::Rgb24, "rgb24"}};
+static_assert(base::in_enum_order(kPixelFormatNames));
+}  // namespace
 
-std::string_view to_string(PixelFormat f) {
-  switch (f) {
-    case PixelFormat::Auto: return "auto";
-    case PixelFormat::Mjpeg: return "mjpeg";
-    case PixelFormat::Yuyv: return "yuyv";
-    case PixelFormat::Rgb24: return "rgb24";
-  }
-  return "?";
-}
-
-bool parse_pixel_format(std::string_view text, PixelFormat& out) {
-  for (auto f : {PixelFormat::Auto, PixelFormat::Mjpeg, PixelFormat::Yuyv, PixelFormat::Rgb24}) {
-    if (to_string(f) == text) {
-      out = f;
-      return true;
-    }
-  }
-  return false;
-}
+std::string_view to_string(CameraState s) { return base::name_of(kCameraStateNames, s); }
+std::string_view to_string(PixelFormat f) { return base::name_of(kPixelFormatNames, f); }
+bool parse_pixel_format(std::string_view text, PixelFormat& out) { return base::parse_name(kPixelFormatNames, text, out); }
+std::string pixel_format_names() { return base::names_text(kPixelFormatNames); }
 
 bool Camera::capture(RgbImage& out, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "camera_schedule.h"
+#include "base/errno_text.h"
 #include "fd.h"
 #include "hal/convert.h"
 #include "hal/devices.h"
@@ -147,11 +148,11 @@ private:
   bool open_device() {
     const std::string& path = config_.device;
     dev_.reset(::open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC));
-    if (!dev_) return set_error(path + ": cannot open camera: " + detail::errno_text(errno));
+    if (!dev_) return set_error(path + ": cannot open camera: " + base::errno_text(errno));
 
     v4l2_capability cap{};
     if (xioctl(dev_.get(), VIDIOC_QUERYCAP, &cap) != 0)
-      return set_error(path + ": VIDIOC_QUERYCAP failed (not a V4L2 device?): " + detail::errno_text(errno));
+      return set_error(path + ": VIDIOC_QUERYCAP failed (not a V4L2 device?): " + base::errno_text(errno));
     const std::uint32_t caps = (cap.capabilities & V4L2_CAP_DEVICE_CAPS) ? cap.device_caps : cap.capabilities;
     if (!(caps & V4L2_CAP_VIDEO_CAPTURE))
       return set_error(path + ": capabilities: expected VIDEO_CAPTURE (a metadata or output node was given?)");
@@ -169,7 +170,7 @@ private:
       fmt.fmt.pix.pixelformat = fourcc(want);
       fmt.fmt.pix.field = V4L2_FIELD_NONE;
       if (xioctl(dev_.get(), VIDIOC_S_FMT, &fmt) != 0)
-        return set_error(path + ": VIDIOC_S_FMT: " + detail::errno_text(errno));
+        return set_error(path + ": VIDIOC_S_FMT: " + base::errno_text(errno));
       // Drivers substitute what they support; only take a format we can convert.
       if (fmt.fmt.pix.pixelformat == fourcc(want)) {
         accepted = true;
@@ -191,7 +192,7 @@ private:
     req.memory = V4L2_MEMORY_MMAP;
     if (xioctl(dev_.get(), VIDIOC_REQBUFS, &req) != 0)
       return set_error(path + ": VIDIOC_REQBUFS (" + std::to_string(config_.buffers) + " mmap buffers): " +
-                       detail::errno_text(errno));
+                       base::errno_text(errno));
     if (req.count < 2)
       return set_error(path + ": VIDIOC_REQBUFS: expected at least 2 mmap buffers, the driver granted " +
                        std::to_string(req.count));
@@ -201,16 +202,16 @@ private:
       buf.memory = V4L2_MEMORY_MMAP;
       buf.index = i;
       if (xioctl(dev_.get(), VIDIOC_QUERYBUF, &buf) != 0)
-        return set_error(path + ": VIDIOC_QUERYBUF " + std::to_string(i) + ": " + detail::errno_text(errno));
+        return set_error(path + ": VIDIOC_QUERYBUF " + std::to_string(i) + ": " + base::errno_text(errno));
       void* p = mmap(nullptr, buf.length, PROT_READ | PROT_WRITE, MAP_SHARED, dev_.get(), buf.m.offset);
-      if (p == MAP_FAILED) return set_error(path + ": mmap buffer " + std::to_string(i) + ": " + detail::errno_text(errno));
+      if (p == MAP_FAILED) return set_error(path + ": mmap buffer " + std::to_string(i) + ": " + base::errno_text(errno));
       buffers_.emplace_back(p, Unmap{buf.length});
       if (xioctl(dev_.get(), VIDIOC_QBUF, &buf) != 0)
-        return set_error(path + ": VIDIOC_QBUF " + std::to_string(i) + ": " + detail::errno_text(errno));
+        return set_error(path + ": VIDIOC_QBUF " + std::to_string(i) + ": " + base::errno_text(errno));
     }
     v4l2_buf_type type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     if (xioctl(dev_.get(), VIDIOC_STREAMON, &type) != 0)
-      return set_error(path + ": VIDIOC_STREAMON: " + detail::errno_text(errno));
+      return set_error(path + ": VIDIOC_STREAMON: " + base::errno_text(errno));
     streaming_ = true;
     detail::epoll_watch(epoll_.get(), dev_.get());
     state_ = CameraState::Streaming;
@@ -225,7 +226,7 @@ private:
 
   // ENODEV (unplugged) and other stream errors: drop everything and retry later; never wait on it.
   void fail(const char* what, int err) {
-    error_ = config_.device + ": " + what + ": " + detail::errno_text(err) +
+    error_ = config_.device + ": " + what + ": " + base::errno_text(err) +
              (err == ENODEV ? " (camera unplugged?); retrying" : "");
     lose();
   }
@@ -256,9 +257,9 @@ private:
   CameraConfig config_;
   const Clock& clock_;
   detail::CameraSchedule schedule_;
-  UniqueFd epoll_;
-  UniqueFd timer_;
-  UniqueFd dev_;
+  base::UniqueFd epoll_;
+  base::UniqueFd timer_;
+  base::UniqueFd dev_;
   std::vector<Mapping> buffers_;
   bool streaming_ = false;
   std::uint32_t pixfmt_ = 0;

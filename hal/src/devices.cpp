@@ -3,16 +3,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/names.h"
 #include "hal/mock.h"
 
 namespace hal {
 
-bool parse_backend(std::string_view text, Backend& out) {
-  if (text == "linux") out = Backend::Linux;
-  else if (text == "mock") out = Backend::Mock;
-  else return false;
-  return true;
-}
+namespace {
+constexpr base::Name<Backend> kBackendNames[] = {{Backend::Linux, "linux"}, {Backend::Mock, "mock"}};
+static_assert(base::in_enum_order(kBackendNames));
+}  // namespace
+
+bool parse_backend(std::string_view text, Backend& out) { return base::parse_name(kBackendNames, text, out); }
+std::string_view to_string(Backend backend) { return base::name_of(kBackendNames, backend); }
+std::vector<std::string> backend_names() { return base::names_of(kBackendNames); }
 
 CameraModel typical_camera_model() {
   CameraModel m;

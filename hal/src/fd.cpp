@@ -6,13 +6,12 @@
 
 #include <cerrno>
 #include <cstdint>
-#include <cstring>
 #include <system_error>
 
 namespace hal::detail {
 
-UniqueFd make_timer() {
-  UniqueFd fd(timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC));
+base::UniqueFd make_timer() {
+  base::UniqueFd fd(timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC));
   if (!fd) throw std::system_error(errno, std::generic_category(), "timerfd_create");
   return fd;
 }
@@ -34,8 +33,8 @@ void drain(int fd) {
   }
 }
 
-UniqueFd make_epoll() {
-  UniqueFd fd(epoll_create1(EPOLL_CLOEXEC));
+base::UniqueFd make_epoll() {
+  base::UniqueFd fd(epoll_create1(EPOLL_CLOEXEC));
   if (!fd) throw std::system_error(errno, std::generic_category(), "epoll_create1");
   return fd;
 }
@@ -47,7 +46,5 @@ void epoll_watch(int epoll_fd, int fd) {
   if (epoll_ctl(epoll_fd, EPOLL_CTL_ADD, fd, &ev) != 0)
     throw std::system_error(errno, std::generic_category(), "epoll_ctl");
 }
-
-std::string errno_text(int err) { return std::strerror(err); }
 
 }  // namespace hal::detail

@@ -10,7 +10,7 @@
 #include "keyboards_evdev.h"
 #include "hal/buttons.h"
 #include "hal/status.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 namespace hal::detail {
 
@@ -53,8 +53,8 @@ private:
   std::vector<std::string> names_;
   ButtonLogic logic_;
   const Clock& clock_;
-  UniqueFd epoll_;
-  UniqueFd timer_;
+  base::UniqueFd epoll_;
+  base::UniqueFd timer_;
   std::vector<Line> lines_;
   std::string error_;
   std::vector<bool> line_down_;           // by button: its GPIO line is active

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 
+#include "base/errno_text.h"
 #include "fd.h"
 
 namespace hal::detail {
@@ -15,14 +16,14 @@ RequestedLine request_line(const GpioLine& cfg, LineUse use, const std::string& 
     line = gpiod_line_find(cfg.line_name.c_str());
     if (!line) {
       *error = "GPIO " + cfg.describe() + ": no chip has a line of that name" +
-               (errno ? " (" + errno_text(errno) + ")" : std::string());
+               (errno ? " (" + base::errno_text(errno) + ")" : std::string());
       return r;
     }
     r.chip.reset(gpiod_line_get_chip(line));
   } else {
     r.chip.reset(gpiod_chip_open_lookup(cfg.chip.c_str()));
     if (!r.chip) {
-      *error = "GPIO chip '" + cfg.chip + "' for " + cfg.describe() + ": cannot open: " + errno_text(errno);
+      *error = "GPIO chip '" + cfg.chip + "' for " + cfg.describe() + ": cannot open: " + base::errno_text(errno);
       return r;
     }
     line = cfg.line_name.empty() ? gpiod_chip_get_line(r.chip.get(), static_cast<unsigned>(cfg.offset))
@@ -49,7 +50,7 @@ RequestedLine request_line(const GpioLine& cfg, LineUse use, const std::string& 
     const char* user = gpiod_line_consumer(line);
     *error = "GPIO " + cfg.describe() + ": cannot request " +
              (use == LineUse::Output ? std::string("as output") : std::string("for edge events")) + ": " +
-             errno_text(errno) + (user ? std::string(" (used by '") + user + "')" : std::string());
+             base::errno_text(errno) + (user ? std::string(" (used by '") + user + "')" : std::string());
     return r;
   }
   r.line.reset(line);

@@ -44,7 +44,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
     out << "hal-test: --hal: expected 'linux' or 'mock', got '" << options.backend << "'\n";
     return 1;
   }
-  out << "backend: " << (backend == Backend::Linux ? "linux" : "mock") << " (" << why << ")\n";
+  out << "backend: " << to_string(backend) << " (" << why << ")\n";
 
   MonotonicClock clock;
   BoardConfig board;

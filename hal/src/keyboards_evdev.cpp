@@ -64,7 +64,7 @@ std::string board_key_name(unsigned code) {
 }
 
 struct Keyboards::Device {
-  UniqueFd fd;
+  base::UniqueFd fd;
   libevdev* dev = nullptr;
   std::string path;
   dev_t rdev = 0;
@@ -126,7 +126,7 @@ void Keyboards::try_open(const std::string& path) {
     if (d->rdev == st.st_rdev) return;
   // Read-only and never EVIOCGRAB: the console and any other reader still get the keys. A device
   // this user may not read (no `input` group) is skipped; keys are an extra, not a requirement.
-  UniqueFd fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  base::UniqueFd fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
   if (!fd) return;
   auto d = std::make_unique<Device>();
   if (libevdev_new_from_fd(fd.get(), &d->dev) != 0) {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hal/clock.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 struct libevdev;
 
@@ -63,8 +63,8 @@ private:
   std::string input_dir_;
   const Clock& clock_;
   bool active_ = false;
-  UniqueFd epoll_;
-  UniqueFd inotify_;
+  base::UniqueFd epoll_;
+  base::UniqueFd inotify_;
   int dir_watch_ = -1;     // on input_dir_
   int parent_watch_ = -1;  // on its parent, until input_dir_ exists
   std::vector<std::unique_ptr<Device>> devices_;

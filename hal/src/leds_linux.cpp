@@ -1,5 +1,6 @@
 #include <cerrno>
 
+#include "base/errno_text.h"
 #include "fd.h"
 #include "gpio_devices.h"
 #include "gpio_line.h"
@@ -15,7 +16,7 @@ void OutputLeds::set(std::size_t led, bool on) {
   if (led >= live_.size() || !live_[led]) return;  // a missing LED was reported at start
   if (const int err = write(led, on); err != 0) {
     live_[led] = false;
-    error_ = labels_[led] + ": set value: " + errno_text(err) + (err == ENODEV ? " (chip removed?)" : "") +
+    error_ = labels_[led] + ": set value: " + base::errno_text(err) + (err == ENODEV ? " (chip removed?)" : "") +
              "; LED disabled";
   }
 }

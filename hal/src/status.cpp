@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <nlohmann/json.hpp>
 
+#include "base/errno_text.h"
+#include "base/names.h"
 #include "fd.h"
 #include "hal/mock.h"
 
@@ -17,6 +19,13 @@ namespace hal {
 namespace {
 
 using std::chrono::milliseconds;
+
+constexpr base::Name<LedPattern> kLedPatternNames[] = {{LedPattern::Off, "off"},
+                                                      {LedPattern::On, "on"},
+                                                      {LedPattern::BlinkSlow, "blink-slow"},
+                                                      {LedPattern::BlinkFast, "blink-fast"},
+                                                      {LedPattern::Heartbeat, "heartbeat"}};
+static_assert(base::in_enum_order(kLedPatternNames));
 
 // A pattern is a period and the phases within it where the level toggles, starting on.
 struct PatternShape {
@@ -40,26 +49,8 @@ PatternShape shape(LedPattern p) {
 
 }  // namespace
 
-std::string_view to_string(LedPattern p) {
-  switch (p) {
-    case LedPattern::Off: return "off";
-    case LedPattern::On: return "on";
-    case LedPattern::BlinkSlow: return "blink-slow";
-    case LedPattern::BlinkFast: return "blink-fast";
-    case LedPattern::Heartbeat: return "heartbeat";
-  }
-  return "?";
-}
-
-bool parse_led_pattern(std::string_view text, LedPattern& out) {
-  for (auto p : {LedPattern::Off, LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat}) {
-    if (to_string(p) == text) {
-      out = p;
-      return true;
-    }
-  }
-  return false;
-}
+std::string_view to_string(LedPattern p) { return base::name_of(kLedPatternNames, p); }
+bool parse_led_pattern(std::string_view text, LedPattern& out) { return base::parse_name(kLedPatternNames, text, out); }
 
 bool pattern_level(LedPattern p, Nanos elapsed) {
   if (p == LedPattern::Off) return false;
@@ -172,7 +163,7 @@ std::string report_to_json(const StatusReport& report) {
 bool Status::write_report(const StatusReport& report, std::string* error) {
   if (file_.empty()) return true;
   auto fail = [&](const std::string& what, int err) {
-    if (error) *error = file_ + ": " + what + ": " + detail::errno_text(err);
+    if (error) *error = file_ + ": " + what + ": " + base::errno_text(err);
     return false;
   };
   nlohmann::json j = nlohmann::json::parse(report_to_json(report));
@@ -181,7 +172,7 @@ bool Status::write_report(const StatusReport& report, std::string* error) {
 
   // The temporary lives in the same directory so rename() is atomic (same file system).
   std::string tmp = file_ + ".XXXXXX";
-  UniqueFd fd(mkostemp(tmp.data(), O_CLOEXEC));
+  base::UniqueFd fd(mkostemp(tmp.data(), O_CLOEXEC));
   if (!fd) return fail("cannot create temporary " + tmp, errno);
   std::size_t done = 0;
   while (done < text.size()) {
@@ -210,7 +201,7 @@ bool Status::write_report(const StatusReport& report, std::string* error) {
   // fsync the directory too, or a power cut can lose the rename itself.
   const auto slash = file_.rfind('/');
   const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : file_.substr(0, slash));
-  if (UniqueFd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)); dfd) fsync(dfd.get());
+  if (base::UniqueFd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)); dfd) fsync(dfd.get());
   return true;
 }
 

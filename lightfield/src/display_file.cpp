@@ -1,9 +1,10 @@
 #include "lightfield/display_file.h"
 
+#include "base/parse.h"
+
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -98,15 +99,8 @@ class Fields {
   }
   // "WxH", each side in 1..max.
   glm::ivec2 size(const std::string& key, int max, const std::string& what) const {
-    const std::string text = string(key);
-    const size_t x = text.find('x');
     glm::ivec2 out(0);
-    const auto read = [&](std::string_view part, int& value) {
-      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-      return ec == std::errc() && end == part.data() + part.size() && value >= 1 && value <= max;
-    };
-    if (x == std::string::npos || !read(std::string_view(text).substr(0, x), out.x) || !read(std::string_view(text).substr(x + 1), out.y))
-      fail(key, what + " as \"WxH\", each 1.." + std::to_string(max));
+    if (!base::parse_size(string(key), max, out.x, out.y)) fail(key, what + " as \"WxH\", each 1.." + std::to_string(max));
     return out;
   }
   std::vector<double> numbers(const std::string& key, size_t min_count, size_t max_count, const std::string& expected) const {

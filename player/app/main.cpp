@@ -1,7 +1,9 @@
 // The player's command line: a thin layer over the app library.
 #include "app/check_command.h"
+#include "base/parse.h"
 #include "app/play_command.h"
 #include "app/render_command.h"
+#include "hal/devices.h"
 #include "hal/hal_test.h"
 #include "platform/platform.h"
 #include "scene/procedural.h"
@@ -10,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
-#include <sstream>
+#include <limits>
 #include <vector>
 
 namespace {
@@ -38,9 +40,7 @@ struct SettingOptions {
 };
 
 bool parse_size(const std::string& text, int& width, int& height) {
-  char separator = 0;
-  std::istringstream size_text(text);
-  return (size_text >> width >> separator >> height) && separator == 'x' && width >= 1 && height >= 1 && size_text.eof();
+  return base::parse_size(text, std::numeric_limits<int>::max(), width, height);
 }
 
 // --size and the settings options, which render and play share: false after printing the error.
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
                                      "Wiring check for a new board: print button events, cycle the LEDs, capture a frame and save it");
   hal_cmd->add_option("--board", hal_test.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
   hal_cmd->add_option("--hal", hal_test.backend, "Hardware backend: linux or mock; default linux with --board, mock without")
-      ->check(CLI::IsMember({"linux", "mock"}));
+      ->check(CLI::IsMember(hal::backend_names()));
   hal_cmd->add_option("--capture", hal_test.capture_path, "Where to save the captured frame")->capture_default_str();
   hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   play_cmd->add_option("--board", play.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
   play_cmd->add_option("--hal", play.hal, "Hardware backend: linux or mock; default linux with --board, mock without")
-      ->check(CLI::IsMember({"linux", "mock"}));
+      ->check(CLI::IsMember(hal::backend_names()));
   play_cmd->add_option("--buttons-script", play.buttons_script, "Mock buttons: lines of `t_ms BUTTON press|release`");
   play_cmd->add_option("--status", play.status_file, "Status file (JSON, replaced atomically); default the board's status_file");
   play_cmd->add_option("--log", play.log_file,

@@ -137,6 +137,48 @@ TEST(KmsConnector, TheListingNamesStateAndModes) {
             "  HDMI-A-1: connected; 1920x1080@60.00 (preferred), 3840x2160@30.00\n");
 }
 
+// The one choice the start and every hotplug make: connector, then mode, with what each outcome says.
+TEST(KmsChoice, ConnectorThenModeWithOneOutcome) {
+  ModeRequest preferred;
+  kms::Choice choice = kms::choose_output(tv(), "auto", preferred);
+  EXPECT_EQ(choice.outcome, kms::Choice::Outcome::chosen);
+  EXPECT_EQ(choice.connector, 1);
+  EXPECT_EQ(choice.mode, 0);
+
+  std::vector<Connector> off = tv();
+  off[1].state = ConnectorState::disconnected;
+  choice = kms::choose_output(off, "auto", preferred);
+  EXPECT_EQ(choice.outcome, kms::Choice::Outcome::waiting);
+  EXPECT_EQ(choice.why, "no display connected");
+  choice = kms::choose_output(off, "HDMI-A-2", preferred);
+  EXPECT_EQ(choice.outcome, kms::Choice::Outcome::waiting);
+  EXPECT_EQ(choice.why, "no display connected to HDMI-A-2");
+
+  choice = kms::choose_output(tv(), "HDMI-1", preferred);
+  EXPECT_EQ(choice.outcome, kms::Choice::Outcome::no_such_connector);
+  EXPECT_EQ(choice.why, "--drm-connector: no connector named 'HDMI-1' (expected auto, help or one of: HDMI-A-2 HDMI-A-1)");
+
+  ModeRequest unknown;
+  std::string error;
+  ASSERT_TRUE(kms::parse_mode_request("1280x720@50", unknown, error));
+  choice = kms::choose_output(tv(), "HDMI-A-1", unknown);
+  EXPECT_EQ(choice.outcome, kms::Choice::Outcome::no_such_mode);
+  EXPECT_EQ(choice.connector, 1);
+  EXPECT_EQ(choice.mode, -1);
+  EXPECT_EQ(choice.why.rfind("--drm-mode: HDMI-A-1 offers no mode 1280x720@50 (it offers ", 0), 0u);
+}
+
+TEST(KmsConnector, StatesHaveTheirNames) {
+  EXPECT_EQ(kms::to_string(ConnectorState::connected), "connected");
+  EXPECT_EQ(kms::to_string(ConnectorState::disconnected), "disconnected");
+  EXPECT_EQ(kms::to_string(ConnectorState::unknown), "unknown");
+  ModeRequest request;
+  request.kind = ModeRequest::Kind::highest;
+  EXPECT_EQ(kms::to_string(request), "highest");
+  request.kind = ModeRequest::Kind::preferred;
+  EXPECT_EQ(kms::to_string(request), "preferred");
+}
+
 // A message as the kernel sends it: fields separated by NULs (the literal's own NUL left out).
 template <size_t N>
 std::vector<char> raw(const char (&text)[N]) {

@@ -18,6 +18,7 @@ std::string_view to_string(CameraState s);
 enum class PixelFormat : std::uint8_t { Auto, Mjpeg, Yuyv, Rgb24 };
 std::string_view to_string(PixelFormat f);
 bool parse_pixel_format(std::string_view text, PixelFormat& out);
+std::string pixel_format_names();  // "auto, mjpeg, yuyv, rgb24"
 
 struct CameraConfig {
   std::string device;  // a path; /dev/v4l/by-id/... or by-path/... survive re-enumeration

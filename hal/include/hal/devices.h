@@ -18,6 +18,8 @@ class MockCamera;
 
 enum class Backend : std::uint8_t { Linux, Mock };
 bool parse_backend(std::string_view text, Backend& out);
+std::string_view to_string(Backend backend);
+std::vector<std::string> backend_names();  // {"linux", "mock"}, for --hal
 
 struct Devices {
   std::unique_ptr<Buttons> buttons;  // never null; a button whose line is missing never fires

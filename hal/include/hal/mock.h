@@ -11,7 +11,7 @@
 #include "hal/buttons.h"
 #include "hal/camera.h"
 #include "hal/status.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 namespace hal {
 
@@ -142,7 +142,7 @@ private:
   const Clock& clock_;
   Nanos interval_;
   Nanos next_frame_{0};
-  UniqueFd timer_;
+  base::UniqueFd timer_;
 };
 
 }  // namespace hal

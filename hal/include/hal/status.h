@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "hal/clock.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 namespace hal {
 
@@ -91,7 +91,7 @@ private:
   std::unique_ptr<LedSink> sink_;
   const Clock& clock_;
   std::string file_;
-  UniqueFd timer_;
+  base::UniqueFd timer_;
 };
 
 std::string report_to_json(const StatusReport& report);

@@ -5,7 +5,7 @@
 #include "playback/playlist.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 #include <condition_variable>
 #include <cstdint>
@@ -61,7 +61,7 @@ class Loader {
 
   playback::ParseOptions playlist_options_;
   scene::LoadOptions scene_options_;  // guarded by mutex_
-  hal::UniqueFd wake_;
+  base::UniqueFd wake_;
   mutable std::mutex mutex_;
   std::condition_variable work_;
   std::deque<Result> jobs_, done_;

@@ -1,23 +1,25 @@
 #include "kms_output.h"
 
-#include <charconv>
+#include "base/names.h"
+#include "base/parse.h"
+
+#include <climits>
 #include <cmath>
 #include <cstdio>
 
 namespace platform::kms {
 namespace {
 
-bool parse_int(std::string_view text, int& out) {
-  if (text.empty()) return false;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc{} && end == text.data() + text.size() && out > 0;
-}
+// The kinds a word names; a size is WxH[@R].
+constexpr base::Name<ModeRequest::Kind> kModeKindNames[] = {{ModeRequest::Kind::preferred, "preferred"},
+                                                           {ModeRequest::Kind::highest, "highest"}};
+static_assert(base::in_enum_order(kModeKindNames));
 
-bool parse_hz(std::string_view text, double& out) {
-  if (text.empty()) return false;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc{} && end == text.data() + text.size() && std::isfinite(out) && out > 0.0 && out < 1000.0;
-}
+constexpr base::Name<ConnectorState> kConnectorStateNames[] = {
+    {ConnectorState::connected, "connected"}, {ConnectorState::disconnected, "disconnected"}, {ConnectorState::unknown, "unknown"}};
+static_assert(base::in_enum_order(kConnectorStateNames));
+
+bool parse_hz(std::string_view text, double& out) { return base::parse_number(text, out) && out > 0.0 && out < 1000.0; }
 
 std::string modes_text(const Connector& connector) {
   if (connector.modes.empty()) return "no modes";
@@ -33,20 +35,14 @@ std::string modes_text(const Connector& connector) {
 
 bool parse_mode_request(std::string_view text, ModeRequest& out, std::string& error) {
   out = {};
-  if (text == "preferred") return true;
-  if (text == "highest") {
-    out.kind = ModeRequest::Kind::highest;
-    return true;
-  }
-  const size_t x = text.find('x');
+  if (base::parse_name(kModeKindNames, text, out.kind)) return true;
   const size_t at = text.find('@');
-  const std::string_view width = x == std::string_view::npos ? std::string_view{} : text.substr(0, x);
-  const std::string_view height = x == std::string_view::npos ? std::string_view{}
-                                                               : text.substr(x + 1, at == std::string_view::npos ? std::string_view::npos : at - x - 1);
   out.kind = ModeRequest::Kind::size;
-  if (!parse_int(width, out.width) || !parse_int(height, out.height) ||
+  if (!base::parse_size(text.substr(0, at), INT_MAX, out.width, out.height) ||
       (at != std::string_view::npos && !parse_hz(text.substr(at + 1), out.refresh_hz))) {
-    error = "--drm-mode: expected preferred, highest or WxH[@R] (e.g. 1920x1080@60), got '" + std::string(text) + "'";
+    std::vector<std::string> forms = base::names_of(kModeKindNames);
+    forms.emplace_back("WxH[@R]");
+    error = "--drm-mode: expected " + base::join_names(forms, " or ") + " (e.g. 1920x1080@60), got '" + std::string(text) + "'";
     out = {};
     return false;
   }
@@ -54,30 +50,17 @@ bool parse_mode_request(std::string_view text, ModeRequest& out, std::string& er
 }
 
 std::string to_string(const ModeRequest& request) {
-  switch (request.kind) {
-    case ModeRequest::Kind::preferred: return "preferred";
-    case ModeRequest::Kind::highest: return "highest";
-    case ModeRequest::Kind::size: {
-      std::string text = std::to_string(request.width) + "x" + std::to_string(request.height);
-      if (request.refresh_hz > 0.0) {
-        char hz[32];
-        std::snprintf(hz, sizeof hz, "@%g", request.refresh_hz);
-        text += hz;
-      }
-      return text;
-    }
+  if (request.kind != ModeRequest::Kind::size) return std::string(base::name_of(kModeKindNames, request.kind));
+  std::string text = std::to_string(request.width) + "x" + std::to_string(request.height);
+  if (request.refresh_hz > 0.0) {
+    char hz[32];
+    std::snprintf(hz, sizeof hz, "@%g", request.refresh_hz);
+    text += hz;
   }
-  return "?";
+  return text;
 }
 
-std::string_view to_string(ConnectorState state) {
-  switch (state) {
-    case ConnectorState::connected: return "connected";
-    case ConnectorState::disconnected: return "disconnected";
-    case ConnectorState::unknown: return "unknown";
-  }
-  return "?";
-}
+std::string_view to_string(ConnectorState state) { return base::name_of(kConnectorStateNames, state); }
 
 std::string describe(const Mode& mode) {
   char text[64];
@@ -146,6 +129,20 @@ int choose_mode(const Connector& connector, const ModeRequest& request, std::str
   if (best < 0)
     error = "--drm-mode: " + connector.name + " offers no mode " + to_string(request) + " (it offers " + modes_text(connector) + ")";
   return best;
+}
+
+Choice choose_output(const std::vector<Connector>& connectors, std::string_view wanted_connector, const ModeRequest& wanted_mode) {
+  Choice choice;
+  bool waiting = false;
+  choice.connector = choose_connector(connectors, wanted_connector, waiting, choice.why);
+  if (choice.connector < 0) {
+    choice.outcome = waiting ? Choice::Outcome::waiting : Choice::Outcome::no_such_connector;
+    if (waiting) choice.why = wanted_connector == "auto" ? "no display connected" : "no display connected to " + std::string(wanted_connector);
+    return choice;
+  }
+  choice.mode = choose_mode(connectors[static_cast<size_t>(choice.connector)], wanted_mode, choice.why);
+  choice.outcome = choice.mode < 0 ? Choice::Outcome::no_such_mode : Choice::Outcome::chosen;
+  return choice;
 }
 
 std::string describe_connectors(std::string_view device, const std::vector<Connector>& connectors) {

@@ -45,6 +45,19 @@ int choose_connector(const std::vector<Connector>& connectors, std::string_view 
 // The mode of `connector` the request names, or -1 with `error` listing what it offers.
 int choose_mode(const Connector& connector, const ModeRequest& request, std::string& error);
 
+// --drm-connector and --drm-mode together, as the start and every hotplug apply them.
+struct Choice {
+  enum class Outcome : std::uint8_t {
+    chosen,             // `connector` and `mode` index the connectors and that connector's modes
+    waiting,            // the wanted connector has no display (yet): `why` says which
+    no_such_connector,  // `why` lists the connectors there are
+    no_such_mode,       // `why` lists the modes the display offers
+  } outcome = Outcome::waiting;
+  int connector = -1, mode = -1;
+  std::string why;
+};
+Choice choose_output(const std::vector<Connector>& connectors, std::string_view wanted_connector, const ModeRequest& wanted_mode);
+
 // Every connector with its state and modes, one per line, for --drm-connector help and for errors
 // where nothing fits.
 std::string describe_connectors(std::string_view device, const std::vector<Connector>& connectors);

@@ -1,5 +1,7 @@
 #include "playback/playlist.h"
 
+#include "base/parse.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -240,7 +242,11 @@ bool read_background(Parser& p, const toml::node& n, const std::string& field, g
     const bool ok = v.size() == 7 && v[0] == '#' &&
                     std::all_of(v.begin() + 1, v.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
     if (!ok) return p.fail(n.source(), field, what, describe(n));
-    for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(std::stoi(v.substr(1 + 2 * i, 2), nullptr, 16)) / 255.0f;
+    for (int i = 0; i < 3; ++i) {
+      int byte = 0;
+      base::parse_int(std::string_view(v).substr(1 + 2 * i, 2), 0, 255, byte, 16);  // hex digits: checked above
+      out[i] = static_cast<float>(byte) / 255.0f;
+    }
     return true;
   }
   const auto* a = n.as_array();

@@ -1,5 +1,7 @@
 #include "render/settings.h"
 
+#include "base/parse.h"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -8,19 +10,11 @@
 namespace render {
 namespace {
 
-bool parse_int(std::string_view text, int low, int high, int& out) {
-  int value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < low || value > high) return false;
-  out = value;
-  return true;
-}
+using base::parse_int;
 
 bool parse_non_negative(std::string_view text, float& out) {
-  // std::from_chars for float is in GCC 12's libstdc++; strtof would accept "1e" and locales.
   float value = 0.0f;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < 0.0f) return false;
+  if (!base::parse_number(text, value) || value < 0.0f) return false;
   out = value;
   return true;
 }

@@ -4,7 +4,7 @@
 // Each reads without blocking and hands back plain data; what the events do is the loop's affair.
 #include "hal/board.h"
 #include "hal/buttons.h"
-#include "hal/unique_fd.h"
+#include "base/unique_fd.h"
 
 #include <poll.h>
 
@@ -36,7 +36,7 @@ class SignalSource {
   Received drain();
 
  private:
-  hal::UniqueFd fd_;
+  base::UniqueFd fd_;
 };
 
 // Folders of the playlist and of every item's scene and display: a writer saves a dot-file and
@@ -57,7 +57,7 @@ class ContentWatch {
   void drain(std::vector<Change>& out);
 
  private:
-  hal::UniqueFd fd_;
+  base::UniqueFd fd_;
   std::map<int, std::string> folders_;  // watch descriptor -> folder
 };
 

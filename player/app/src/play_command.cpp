@@ -789,7 +789,7 @@ void Player::render_frame(const playback::Frame& frame) {
     light_field_.render(programs_, *gpu, light_field_targets_, frame.fade, false, {}, &gl_error_);
     light_field_.present(programs_, present_, rotation_.width(), rotation_.height());
   } else if (gpu != nullptr) {
-    const render::Frame pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
+    const render::PassContext pass{programs_, *gpu, targets_, view_, &timer_, &gl_error_};
     render::render_view(pass, present_, frame.fade);
   } else {
     // Nothing to draw yet (loading) or nothing playable: the background colour.

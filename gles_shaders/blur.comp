@@ -21,27 +21,27 @@ layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
 shared highp vec2 run[BLUR_GROUP_SIZE + 2 * BLUR_MAX_RADIUS];
 
 void main() {
-  ivec2 size = blur.config.zw;
-  bool vertical = blur.config.y != 0;
+  ivec2 size = ivec2(blur.width, blur.height);
+  bool vertical = blur.direction != 0;
   int length_along = vertical ? size.y : size.x;
   int line = int(gl_WorkGroupID.y);  // the row (horizontal pass) or column (vertical pass)
-  int first = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE - blur.config.x;
+  int first = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE - blur.radius;
   int local = int(gl_LocalInvocationID.x);
   // Fill the run and its apron of `radius` texels each side; edges repeat the last texel, as the
   // clamped taps of a per-pixel blur would.
-  for (int i = local; i < BLUR_GROUP_SIZE + 2 * blur.config.x; i += BLUR_GROUP_SIZE) {
+  for (int i = local; i < BLUR_GROUP_SIZE + 2 * blur.radius; i += BLUR_GROUP_SIZE) {
     int along = clamp(first + i, 0, length_along - 1);
     ivec2 texel = vertical ? ivec2(line, along) : ivec2(along, line);
     run[i] = texelFetch(u_source, texel, 0).rg;
 #ifdef DENOISE
-    run_normal[i] = shading_normal(texelFetch(u_normal, texel << blur.source.x, 0));
+    run_normal[i] = shading_normal(texelFetch(u_normal, texel << blur.ao_shift, 0));
 #endif
   }
   barrier();
   int along = int(gl_WorkGroupID.x) * BLUR_GROUP_SIZE + local;
   if (along >= length_along) return;
   ivec2 pixel = vertical ? ivec2(line, along) : ivec2(along, line);
-  int centre_index = local + blur.config.x;
+  int centre_index = local + blur.radius;
   highp vec2 centre = run[centre_index];
   if (centre.y <= 0.0) {  // background stays empty
     imageStore(u_target, pixel, vec4(centre, 0.0, 0.0));
@@ -49,12 +49,12 @@ void main() {
   }
   float sum = centre.x * blur.weights[0].x;
   float total = blur.weights[0].x;
-  for (int i = 1; i <= blur.config.x; ++i) {
+  for (int i = 1; i <= blur.radius; ++i) {
     for (int side = -1; side <= 1; side += 2) {
       highp vec2 value = run[centre_index + side * i];
       float weight = blur.weights[i].x;
 #ifdef BILATERAL
-      float tolerance = blur.bilateral.x * centre.y;
+      float tolerance = blur.depth_tolerance * centre.y;
       float difference = (value.y - centre.y) / tolerance;
       weight *= value.y > 0.0 ? exp(-difference * difference) : 0.0;
 #endif

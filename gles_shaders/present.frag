@@ -47,8 +47,8 @@ vec4 data(vec3 value) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy) - composite.viewport.xy;
-  float fade = composite.depth_range.w;
+  ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(composite.viewport_x, composite.viewport_y);
+  float fade = composite.fade;
   float depth = texelFetch(u_linear_depth, pixel, 0).r;
   if (depth <= 0.0) {
     fragment = shaded(composite.background.rgb * fade);
@@ -58,28 +58,27 @@ void main() {
   // different branches, where the compiler could not merge them.
   vec3 normal = shading_normal(texelFetch(u_normal, pixel, 0));
   float ao = 0.0;
-  if (composite.config.y != 0) {
-    if (composite.ao_config.z == 0) ao = texelFetch(u_ao, pixel, 0).r;
+  if (composite.apply_ao != 0) {
+    if (composite.ao_shift == 0) ao = texelFetch(u_ao, pixel, 0).r;
     else
-      ao = upsampled_ao(u_ao, u_linear_depth, composite.depth_range.z, composite.ao_config.xy, pixel,
-                        depth * composite.depth_range.z,
-                        vec4(normal, composite.shading.y), composite.unproject,
-                        composite.config.zw);
+      ao = upsampled_ao(u_ao, u_linear_depth, composite.inverse_far, ivec2(composite.ao_width, composite.ao_height),
+                        pixel, depth * composite.inverse_far, vec4(normal, composite.plane_tolerance),
+                        composite.unproject, ivec2(composite.full_width, composite.full_height));
   }
 #if OUTPUT == OUTPUT_AO
   fragment = shaded(vec3(1.0 - ao) * fade);
 #elif OUTPUT == OUTPUT_NORMAL
   fragment = data((normal * 0.5 + 0.5) * fade);
 #elif OUTPUT == OUTPUT_DEPTH
-  float t = (depth - composite.depth_range.x) / (composite.depth_range.y - composite.depth_range.x);
+  float t = (depth - composite.near_plane) / (composite.far_plane - composite.near_plane);
   fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
 #else
   vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
-  float ambient = composite.light_direction.w;
+  float ambient = composite.ambient;
   float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);
   // --ao-strength darkens or lightens the shaded image only: the AO view and every read-back show the
   // AO as computed, which is what accuracy is measured on.
-  float visibility = pow(max(1.0 - ao, 0.0), composite.shading.x);
+  float visibility = pow(max(1.0 - ao, 0.0), composite.ao_strength);
   fragment = shaded(albedo * (ambient + (1.0 - ambient) * diffuse) * visibility * fade);
 #endif
 }

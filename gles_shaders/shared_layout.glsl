@@ -1,6 +1,14 @@
 // Constants and uniform-block layouts shared by the GLSL shaders and the C++ renderer: C++
-// includes this file inside a namespace that maps vec4/ivec4/mat4 to GLM types. Blocks use only
-// vec4, ivec4 and mat4 members so std140 and the C++ layout agree with no padding rules involved.
+// includes this file inside a namespace that maps the GLSL types to GLM and int32/float/uint32, so
+// each block is one named struct on both sides (ssao::pack_*_params and render::pack_*_params fill
+// them). std140 and C++ agree only where no padding rule is involved, so blocks hold
+//  - float, int and uint in runs of four (four scalars fill 16 bytes in both), padded with an
+//    `unused_*` member where a run falls short;
+//  - vec4, ivec4 and mat4, and arrays of them (std140 strides every array element by 16 bytes, so
+//    an array of scalars is an array of vec4 whose x holds the value);
+//  - int 0/1 for flags (a GLSL bool is 4 bytes, a C++ bool 1);
+// and no vec2 or vec3 (std140 aligns them to 8 and 16 bytes, C++ to 4). The build checks every
+// member's offset against glslangValidator's std140 reflection (layout_check.cmake).
 #ifndef SHARED_LAYOUT_GLSL
 #define SHARED_LAYOUT_GLSL
 
@@ -37,18 +45,27 @@
 #define DEPTH_CHAIN_MAX_LEVELS 8
 
 struct SsaoParams {
-  mat4 projection;         // view space -> clip space
-  vec4 unproject;          // (1/P00, 1/P11, P20, P21): rebuilds view position from linear depth
-  vec4 radii_0_3;          // world-space radius of each resolution, largest first
-  vec4 radius_4_bias;      // x: fifth radius; y: depth bias as a fraction of the radius;
-                           // z: pixels per view-space unit at depth 1 (P11 * full height / 2);
-                           // w: the AO of the radii skipped as sub-pixel (their known value)
-  ivec4 counts;            // x: samples per radius, y: radii configured, z: AO width, w: AO height
-  ivec4 lods_0_3;          // depth-chain level each radius reads (large radii read coarse levels)
-  ivec4 config;            // x: level of radius 4, y: AO resolution shift (0 full, 1 half), z: full width, w: full height
-  ivec4 radius_range;            // x: first radius used this frame, y: one past the last (radii skipped per frame);
-                                 // z: 1 runs the estimator on background pixels too (only to measure the skip);
-                                 // w: horizon taps on each side of a slice (slices = samples / (2 w))
+  mat4 projection;                  // view space -> clip space
+  vec4 unproject;                   // (1/P00, 1/P11, P20, P21): view_position_at (common.glsl) rebuilds a
+                                    // view position from linear depth with it
+  vec4 radii[SSAO_MAX_RADII];       // x: world-space radius k, largest first
+  ivec4 levels[SSAO_MAX_RADII];     // x: the depth-chain level radius k reads (large radii read coarse levels)
+  int samples;                      // per radius (horizon: taps per pixel)
+  int radius_count;                 // radii configured
+  int first_radius;                 // the radii used this frame: first_radius up to end_radius (the others
+  int end_radius;                   // are skipped this frame, see ssao::update_for_frame)
+  int ao_width;                     // the AO image's size
+  int ao_height;
+  int full_width;                   // the view's size (the depth and normal textures')
+  int full_height;
+  int ao_shift;                     // AO resolution shift from full (0 full, 1 half)
+  int horizon_steps;                // horizon taps on each side of a slice (slices = samples / (2 steps))
+  int shade_background;             // 1 runs the estimator on background pixels too (only to measure the skip)
+  int unused_0;
+  float depth_bias;                 // as a fraction of the radius
+  float pixels_per_unit;            // pixels per view-space unit at depth 1 (P11 * full_height / 2)
+  float skipped_radii_ao;           // the AO of the radii skipped as sub-pixel (their known value)
+  float unused_1;
   vec4 kernel[SSAO_MAX_SAMPLES];                             // see ssao::make_kernel
   vec4 rotation[SSAO_ROTATION_TILE * SSAO_ROTATION_TILE];    // xy: cos, sin of the pixel's turn; z: where along
                                                              // its step each horizon tap falls (0.5: the end)
@@ -56,29 +73,48 @@ struct SsaoParams {
 
 struct BlurParams {
   vec4 weights[BLUR_MAX_RADIUS + 1];  // x: Gaussian weight at distance i
-  ivec4 config;                       // x: radius, y: direction (0 horizontal, 1 vertical), z: width, w: height
-  vec4 bilateral;                     // x: depth tolerance relative to the centre depth
-  ivec4 source;                       // x: AO resolution shift (denoise reads normals at full resolution)
+  int radius;                         // taps each side
+  int direction;                      // 0 horizontal, 1 vertical
+  int width;                          // the AO image's size
+  int height;
+  int ao_shift;                       // AO resolution shift (denoise reads normals at full resolution)
+  float depth_tolerance;              // bilateral: relative to the centre depth
+  int unused_0;
+  int unused_1;
 };
 
 struct UpsampleParams {
-  ivec4 config;           // x: full width, y: full height, z: AO width, w: AO height
-  vec4 depth;             // x: 1 / far (the AO texture's g channel is depth / far); y: the plane
-                          // tolerance of upsample.glsl (0: depth alone)
-  vec4 unproject;         // the presented view's, as SsaoParams.unproject
+  int full_width;          // the view's size
+  int full_height;
+  int ao_width;            // the AO image's size
+  int ao_height;
+  float inverse_far;       // 1 / far (the AO texture's g channel is depth / far)
+  float plane_tolerance;   // of upsample.glsl (0: depth alone)
+  float unused_0;
+  float unused_1;
+  vec4 unproject;          // the presented view's, as SsaoParams.unproject
 };
 
 struct CompositeParams {
-  vec4 light_direction;   // view space, normalised; w: ambient share
-  vec4 background;        // linear RGB of empty pixels
-  vec4 depth_range;       // x: near, y: far (for the depth view); z: 1 / far; w: fade (brightness multiplier)
-  ivec4 config;           // x: output (OUTPUT_*), y: apply AO (0/1), z: width, w: height
-  ivec4 ao_config;        // x, y: AO width and height; z: AO resolution shift (0 full, 1 half);
-                          // w: unused
-  ivec4 viewport;         // x, y: the view's lower-left pixel in the framebuffer
-  vec4 shading;           // x: AO strength, the power on 1 - AO in the shaded image (1: as computed);
-                          // y: the plane tolerance of upsample.glsl (0: depth alone)
-  vec4 unproject;         // as SsaoParams.unproject, for the upsampling's plane test
+  vec4 light_direction;    // xyz: view space, normalised
+  vec4 background;         // rgb: linear RGB of empty pixels
+  vec4 unproject;          // as SsaoParams.unproject, for the upsampling's plane test
+  int apply_ao;            // 0/1
+  int ao_shift;            // AO resolution shift (0 full: no upsampling, 1 half)
+  int viewport_x;          // the view's lower-left pixel in the framebuffer
+  int viewport_y;
+  int full_width;          // the view's size
+  int full_height;
+  int ao_width;            // the AO image's size
+  int ao_height;
+  float near_plane;        // for the depth view
+  float far_plane;
+  float inverse_far;       // 1 / far_plane
+  float fade;              // brightness multiplier (transitions between playlist items)
+  float ambient;           // the ambient light's share
+  float ao_strength;       // the power on 1 - AO in the shaded image (1: as computed)
+  float plane_tolerance;   // of upsample.glsl (0: depth alone)
+  float unused_0;
 };
 
 // Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by
@@ -89,23 +125,42 @@ struct TemporalParams {
   mat4 previous_projection;  // previous view space -> previous clip space
   mat4 view_to_world;        // current view space -> world (normals are compared in world space)
   vec4 unproject;            // the current frame's, as SsaoParams.unproject
-  vec4 depth;                // x: current far; y: previous far; z: depth tolerance relative to depth;
-                             // w: least cosine between the normals of a kept history texel and the pixel
-  ivec4 config;              // x: 1 when there is a history; y: frames averaged at most; z: AO resolution
-                             // shift (0 full, 1 half); w: 1 when the view moved since the previous frame
-  ivec4 size;                // x, y: AO width and height; z, w: full width and height
+  float far_plane;           // the current view's far
+  float previous_far;        // the previous view's far
+  float depth_tolerance;     // relative to depth
+  float normal_cosine;       // least cosine between the normals of a kept history texel and the pixel
+  int has_history;           // 1 when there is a history
+  int max_frames;            // frames averaged at most
+  int ao_shift;              // AO resolution shift (0 full, 1 half)
+  int moved;                 // 1 when the view moved since the previous frame
+  int ao_width;              // the AO image's size
+  int ao_height;
+  int full_width;            // the view's size
+  int full_height;
 };
 
 // One optical module of a light field display (lightfield/modules.h, Module): what the G-buffer's
 // vertex stage and Algorithm 2's SSAO need to map physical points to the module's image.
 struct ModuleParams {
-  mat4 world_to_physical;  // affine: the ROI transform
+  mat4 world_to_physical;    // affine: the ROI transform
   mat4 physical_to_world;
-  vec4 module;             // x: P.x, y: P.z, z: D (observer distance), w: y_obs (observer height)
-  vec4 screen;             // x, y: footprint x0, x1; z: screen height; w: physical units per world unit
-  vec4 depth;              // x: z_front, y: z_back (the physical z range rasterised); z: 1 / (D - z_back); w: world seed cell
-  ivec4 size;              // x, y: the module's image size; z: 1 turns samples by the pixel tile as
-                           // Algorithm 1 does (only to measure what world seeding buys); w: unused
+  float module_x;            // P.x: the module's position
+  float module_z;            // P.z
+  float observer_distance;   // D
+  float observer_height;     // y_obs
+  float footprint_x0;        // the module's footprint on the screen, left to right
+  float footprint_x1;
+  float screen_height;
+  float physical_per_world;  // the ROI's scale
+  float z_front;             // the physical z range rasterised
+  float z_back;
+  float seed_cell;           // the world cell Algorithm 2's turns are seeded from
+  float unused_0;
+  int width;                 // the module's image size
+  int height;
+  int pixel_turns;           // 1 turns samples by the pixel tile as Algorithm 1 does (only to measure
+                             // what world seeding buys)
+  int unused_1;
 };
 
 #endif

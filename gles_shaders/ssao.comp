@@ -39,8 +39,9 @@ layout(rgba16f, binding = 0) writeonly uniform highp image2D u_ao;
 
 const highp float kPi = 3.14159265358979;
 
-highp float radius_at(int k) { return k < 4 ? ssao.radii_0_3[k] : ssao.radius_4_bias.x; }
-int level_at(int k) { return k < 4 ? ssao.lods_0_3[k] : ssao.config.x; }
+highp float radius_at(int k) { return ssao.radii[k].x; }
+int level_at(int k) { return ssao.levels[k].x; }
+ivec2 full_size() { return ivec2(ssao.full_width, ssao.full_height); }
 
 highp float depth_at(ivec2 texel, int level) {
   // Odd sizes round down level by level, so the last row or column maps past the coarse level's end.
@@ -48,7 +49,7 @@ highp float depth_at(ivec2 texel, int level) {
 }
 
 highp vec3 view_position(ivec2 texel, highp float depth) {
-  return view_position_at(texel, depth, ssao.unproject, ssao.config.zw);
+  return view_position_at(texel, depth, ssao.unproject, full_size());
 }
 
 // Per-sample arithmetic runs at this precision; AO_MEDIUMP (--precision mediump) makes it fp16 as
@@ -66,27 +67,27 @@ highp vec3 view_position(ivec2 texel, highp float depth) {
 // stored surface hides. Depths are distances from the observer line in physical units; the radius
 // and bias are scaled to match (world to physical is a uniform scale).
 highp float hidden_share_module(highp vec3 world, highp float depth, highp mat3 basis, highp float radius) {
-  highp float physical_radius = radius * lightfield_module.screen.w;
-  highp float bias = ssao.radius_4_bias.y * physical_radius;
-  highp float pz = lightfield_module.module.y, d = lightfield_module.module.z;
+  highp float physical_radius = radius * lightfield_module.physical_per_world;
+  highp float bias = ssao.depth_bias * physical_radius;
+  highp float pz = lightfield_module.module_z, d = lightfield_module.observer_distance;
   int hidden = 0;
-  for (int i = 0; i < ssao.counts.x; ++i) {
+  for (int i = 0; i < ssao.samples; ++i) {
     highp vec3 sample_world = world + radius * (basis * ssao.kernel[i].xyz);
     highp vec3 q = (lightfield_module.world_to_physical * vec4(sample_world, 1.0)).xyz;
     if (q.z <= pz || q.z >= d) continue;  // outside the module's image space: nothing can hide it
     highp vec2 ndc = module_ndc(module_screen_point(q));
-    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(ssao.config.zw)));
-    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(full_size())));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, full_size()))) continue;
     highp float surface = texelFetch(u_linear_depth, texel, 0).r;
     highp float sample_depth = module_depth(q);
     if (surface > 0.0 && surface < sample_depth - bias && abs(surface - depth) < physical_radius) ++hidden;
   }
-  return float(hidden) / float(ssao.counts.x);
+  return float(hidden) / float(ssao.samples);
 }
 
 // A turn per world cell (a fraction of the base radius across): the same in every module.
 highp vec2 world_turn(highp vec3 world) {
-  uvec3 cell = uvec3(ivec3(floor(world / lightfield_module.depth.w)));
+  uvec3 cell = uvec3(ivec3(floor(world / lightfield_module.seed_cell)));
   uint h = cell.x * 0x8da6b343u ^ cell.y * 0xd8163841u ^ cell.z * 0xcb1ab31fu;
   h ^= h >> 16;
   h *= 0x7feb352du;
@@ -111,7 +112,7 @@ highp float plane_depth(highp vec2 ndc, highp vec3 normal, highp float plane) {
 // over a fraction of a texel, as before.
 highp float subtexel_shift(highp vec2 ndc, ivec2 texel, int level, highp vec3 normal, highp float plane, highp float radius) {
   ivec2 coarse = min(texel >> level, textureSize(u_linear_depth, level) - 1);
-  highp vec2 centre = (vec2(coarse) + 0.5) * float(1 << level) / vec2(ssao.config.zw) * 2.0 - 1.0;
+  highp vec2 centre = (vec2(coarse) + 0.5) * float(1 << level) / vec2(full_size()) * 2.0 - 1.0;
   highp float exact = plane_depth(ndc, normal, plane), at_centre = plane_depth(centre, normal, plane);
   return exact > 0.0 && at_centre > 0.0 ? clamp(exact - at_centre, -radius, radius) : 0.0;
 }
@@ -123,19 +124,19 @@ highp float subtexel_shift(highp vec2 ndc, ivec2 texel, int level, highp vec3 no
 // Everything per sample is relative to the shaded point (offsets, depth differences), so at mediump
 // the small quantities keep their precision; only the pixel's own position and projection are highp.
 highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basis, highp float radius, int level) {
-  SAMPLE_PRECISION float bias = ssao.radius_4_bias.y * radius;
+  SAMPLE_PRECISION float bias = ssao.depth_bias * radius;
   highp vec4 clip_centre = ssao.projection * vec4(position, 1.0);
 #if ESTIMATOR == ESTIMATOR_HEMISPHERE
   highp float plane = dot(basis[2], position);
 #endif
   int hidden = 0;
-  for (int i = 0; i < ssao.counts.x; ++i) {
+  for (int i = 0; i < ssao.samples; ++i) {
     SAMPLE_PRECISION vec3 offset = radius * (basis * ssao.kernel[i].xyz);
     highp vec4 clip = clip_centre + ssao.projection * vec4(offset, 0.0);
     if (clip.w <= 0.0) continue;  // behind the eye: nothing on screen can hide it
     highp vec2 ndc = clip.xy / clip.w;
-    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(ssao.config.zw)));
-    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+    ivec2 texel = ivec2(floor((ndc * 0.5 + 0.5) * vec2(full_size())));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, full_size()))) continue;
     highp float surface = depth_at(texel, level);
 #if ESTIMATOR == ESTIMATOR_HEMISPHERE
     if (surface > 0.0) surface += subtexel_shift(ndc, texel, level, basis[2], plane, radius);
@@ -144,7 +145,7 @@ highp float hidden_share(highp vec3 position, highp float depth, highp mat3 basi
     SAMPLE_PRECISION float sample_offset = -offset.z;          // how far the sample lies behind it
     if (surface > 0.0 && surface_offset < sample_offset - bias && abs(surface_offset) < radius) ++hidden;
   }
-  return float(hidden) / float(ssao.counts.x);
+  return float(hidden) / float(ssao.samples);
 }
 #else
 // The cosine-weighted integral over a slice from the view vector to the horizon angle h, for the
@@ -192,15 +193,15 @@ highp float tap_distance_pixels(int step_index, int steps, highp float radius_pi
 // (+0.09 with one slice, +0.03 with two, against the near-field reference).
 highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 normal, highp vec3 face, highp float depth,
                               highp float turn_angle, highp float tap_jitter, highp float radius, int level) {
-  highp float radius_pixels = radius * ssao.radius_4_bias.z / depth;
+  highp float radius_pixels = radius * ssao.pixels_per_unit / depth;
   if (radius_pixels < 1.0) return 0.0;  // the radius falls inside this pixel: nothing to find
-  int steps = ssao.radius_range.w;
-  int slices = max(1, ssao.counts.x / (2 * steps));
+  int steps = ssao.horizon_steps;
+  int slices = max(1, ssao.samples / (2 * steps));
   highp vec3 view = normalize(-position);
   // A tap's view position is (texel x tap_scale + tap_offset) x depth: view_position's arithmetic with
   // its divisions done once per pixel rather than per tap.
-  highp vec2 tap_scale = 2.0 * ssao.unproject.xy / vec2(ssao.config.zw);
-  highp vec2 tap_offset = (1.0 / vec2(ssao.config.zw) - 1.0 + ssao.unproject.zw) * ssao.unproject.xy;
+  highp vec2 tap_scale = 2.0 * ssao.unproject.xy / vec2(full_size());
+  highp vec2 tap_offset = (1.0 / vec2(full_size()) - 1.0 + ssao.unproject.zw) * ssao.unproject.xy;
   highp float inverse_radius = 1.0 / radius;
   ivec2 last_texel = textureSize(u_linear_depth, level) - 1;  // depth_at's clamp, its size queried once
   highp float visibility = 0.0, open = 0.0;
@@ -242,7 +243,7 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
       for (int side = 0; side < 2; ++side) {
         highp vec2 offset = (side == 0 ? 1.0 : -1.0) * distance_pixels * direction;
         ivec2 texel = pixel + ivec2(floor(offset + 0.5));
-        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ssao.config.zw))) continue;
+        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, full_size()))) continue;
         highp float sample_depth = texelFetch(u_linear_depth, min(texel >> level, last_texel), level).r;
         if (sample_depth <= 0.0) continue;
         // Per tap, everything is relative to the shaded point and in units of the radius. All of it
@@ -291,13 +292,13 @@ highp float horizon_occlusion(ivec2 pixel, highp vec3 position, highp vec3 norma
 
 void main() {
   ivec2 ao_pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (ao_pixel.x >= ssao.counts.z || ao_pixel.y >= ssao.counts.w) return;
+  if (ao_pixel.x >= ssao.ao_width || ao_pixel.y >= ssao.ao_height) return;
   // At reduced resolution each AO pixel shades the first full-resolution pixel of its block.
-  ivec2 pixel = ao_pixel << ssao.config.y;
+  ivec2 pixel = ao_pixel << ssao.ao_shift;
   highp float depth = texelFetch(u_linear_depth, pixel, 0).r;
   bool background = depth <= 0.0;
   if (background) {  // nothing to occlude: the pixel, and a group of nothing but background, ends here
-    if (ssao.radius_range.z == 0) {
+    if (ssao.shade_background == 0) {
       imageStore(u_ao, ao_pixel, vec4(0.0));
       return;
     }
@@ -306,7 +307,7 @@ void main() {
 #ifdef LIGHTFIELD_MODULES
   // Algorithm 2, rows 1-2: the world position from the positions texture, not from depth.
   highp vec3 position = texelFetch(u_positions, pixel, 0).xyz;
-  highp vec2 turn = lightfield_module.size.z == 1
+  highp vec2 turn = lightfield_module.pixel_turns == 1
       ? ssao.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE].xy
       : world_turn(position);
 #else
@@ -331,8 +332,8 @@ void main() {
   highp float turn_angle = atan(turn.y, turn.x);
   highp float tap_jitter = tile_entry.z;
 #endif
-  float ao = ssao.radius_4_bias.w;
-  for (int k = ssao.radius_range.x; k < ssao.radius_range.y; ++k) {
+  float ao = ssao.skipped_radii_ao;
+  for (int k = ssao.first_radius; k < ssao.end_radius; ++k) {
 #if ESTIMATOR == ESTIMATOR_HORIZON
     ao = max(ao, horizon_occlusion(pixel, position, normal, face, depth, turn_angle, tap_jitter, radius_at(k), level_at(k)));
 #elif defined(LIGHTFIELD_MODULES)

@@ -25,7 +25,9 @@ layout(rgba8_snorm, binding = 1) writeonly uniform highp image2D u_target_normal
 
 void main() {
   ivec2 ao_pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (ao_pixel.x >= temporal.size.x || ao_pixel.y >= temporal.size.y) return;
+  ivec2 ao_size = ivec2(temporal.ao_width, temporal.ao_height);
+  ivec2 full_size = ivec2(temporal.full_width, temporal.full_height);
+  if (ao_pixel.x >= ao_size.x || ao_pixel.y >= ao_size.y) return;
   highp vec2 current = texelFetch(u_current, ao_pixel, 0).rg;
   if (current.g <= 0.0) {  // background: nothing to remember
     imageStore(u_target, ao_pixel, vec4(0.0));
@@ -33,31 +35,31 @@ void main() {
     return;
   }
   // The AO pixel shaded the first full-resolution pixel of its block (ssao.comp).
-  ivec2 pixel = ao_pixel << temporal.config.z;
-  highp float depth = current.g * temporal.depth.x;
-  highp vec3 position = view_position_at(pixel, depth, temporal.unproject, temporal.size.zw);
+  ivec2 pixel = ao_pixel << temporal.ao_shift;
+  highp float depth = current.g * temporal.far_plane;
+  highp vec3 position = view_position_at(pixel, depth, temporal.unproject, full_size);
   highp vec3 normal = normalize(mat3(temporal.view_to_world) * shading_normal(texelFetch(u_normal, pixel, 0)));
 
   highp float history = 0.0, frames = 0.0, weight_sum = 0.0;
-  if (temporal.config.x != 0) {
+  if (temporal.has_history != 0) {
     highp vec3 previous = (temporal.current_to_previous * vec4(position, 1.0)).xyz;
     highp vec4 clip = temporal.previous_projection * vec4(previous, 1.0);
     highp float expected = -previous.z;  // the point's linear depth in the previous view
     if (clip.w > 0.0 && expected > 0.0) {
-      highp vec2 previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(temporal.size.zw);
+      highp vec2 previous_pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(full_size);
       // AO texel i holds full-resolution pixel (i << shift), whose centre is at (i << shift) + 0.5.
-      highp vec2 coordinate = (previous_pixel - 0.5) / float(1 << temporal.config.z);
+      highp vec2 coordinate = (previous_pixel - 0.5) / float(1 << temporal.ao_shift);
       ivec2 base = ivec2(floor(coordinate));
       highp vec2 f = coordinate - vec2(base);
-      highp float tolerance = temporal.depth.z * expected;
+      highp float tolerance = temporal.depth_tolerance * expected;
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
           ivec2 texel = base + ivec2(dx, dy);
-          if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, temporal.size.xy))) continue;
+          if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ao_size))) continue;
           highp vec4 past = texelFetch(u_history, texel, 0);
           if (past.g <= 0.0) continue;  // background then
-          if (abs(past.g * temporal.depth.y - expected) > tolerance) continue;  // another surface then
-          if (dot(texelFetch(u_history_normal, texel, 0).xyz, normal) < temporal.depth.w) continue;
+          if (abs(past.g * temporal.previous_far - expected) > tolerance) continue;  // another surface then
+          if (dot(texelFetch(u_history_normal, texel, 0).xyz, normal) < temporal.normal_cosine) continue;
           highp float w = (dx == 0 ? 1.0 - f.x : f.x) * (dy == 0 ? 1.0 - f.y : f.y);
           history += w * past.r;
           frames += w * past.b;
@@ -65,7 +67,7 @@ void main() {
         }
     }
   }
-  highp float limit = float(temporal.config.w != 0 ? min(temporal.config.y, TEMPORAL_MOVING_FRAMES) : temporal.config.y);
+  highp float limit = float(temporal.moved != 0 ? min(temporal.max_frames, TEMPORAL_MOVING_FRAMES) : temporal.max_frames);
   highp float average = current.r;
   highp float count = 1.0;
   // A history that only a sliver of the footprint supports is as likely a neighbour's as this point's.

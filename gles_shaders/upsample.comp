@@ -15,14 +15,14 @@ layout(rgba16f, binding = 0) writeonly uniform highp image2D u_target;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= upsample.config.x || pixel.y >= upsample.config.y) return;
-  highp float depth = texelFetch(u_linear_depth, pixel, 0).r * upsample.depth.x;
+  if (pixel.x >= upsample.full_width || pixel.y >= upsample.full_height) return;
+  highp float depth = texelFetch(u_linear_depth, pixel, 0).r * upsample.inverse_far;
   if (depth <= 0.0) {
     imageStore(u_target, pixel, vec4(0.0));
     return;
   }
-  highp vec4 plane = vec4(shading_normal(texelFetch(u_normal, pixel, 0)), upsample.depth.y);
-  highp float ao = upsampled_ao(u_ao, u_linear_depth, upsample.depth.x, upsample.config.zw, pixel, depth, plane,
-                                upsample.unproject, upsample.config.xy);
+  highp vec4 plane = vec4(shading_normal(texelFetch(u_normal, pixel, 0)), upsample.plane_tolerance);
+  highp float ao = upsampled_ao(u_ao, u_linear_depth, upsample.inverse_far, ivec2(upsample.ao_width, upsample.ao_height), pixel, depth, plane,
+                                upsample.unproject, ivec2(upsample.full_width, upsample.full_height));
   imageStore(u_target, pixel, vec4(ao, depth, 0.0, 0.0));
 }

@@ -172,7 +172,7 @@ TEST_P(SphereVsPlayer, AgreesOnAFacingPlane) {
   ao.pattern = GetParam();
   ao.half_resolution = false;  // the player's AO at every pixel the ray tracer sees
   const float radius = 0.3f;
-  auto params = ssao::make_ssao_params(ao, radius, kSize, kSize);
+  auto params = ssao::pack_ssao_params(ao, radius, kSize, kSize);
   ssao::FrameView frame;
   frame.projection = projection;
   frame.nearest_depth = frame.centre_depth = static_cast<float>(depth);
@@ -195,8 +195,7 @@ TEST_P(SphereVsPlayer, AgreesOnAFacingPlane) {
       view.position.at(i, 0) = static_cast<float>(ndc_x * depth / projection[0][0]);
       view.position.at(i, 1) = static_cast<float>(ndc_y * depth / projection[1][1]);
     }
-  for (int k = 0; k < params.counts.y; ++k)
-    view.radii.push_back(k < 4 ? params.radii_0_3[k] : params.radius_4_bias.x);
+  for (int k = 0; k < params.radius_count; ++k) view.radii.push_back(params.radii[k].x);
   ReferenceSettings settings;
   settings.rays = 256;
   const ReferenceResult r = run(rays, view, settings);

@@ -134,8 +134,8 @@ TEST_P(Pipeline, HorizonWithAWideRadiusEqualsTheCpuReference) {
   const float centre_depth = depth[static_cast<size_t>(64 * 128 + 64)];
   ASSERT_GT(centre_depth, 0.0f);
   const auto& params = h.renderer.ssao_params();
-  const float radius_pixels = params.radii_0_3[params.radius_range.x] * params.radius_4_bias.z / centre_depth;
-  const float half_step = 0.5f * radius_pixels / static_cast<float>(params.radius_range.w - 1);
+  const float radius_pixels = params.radii[params.first_radius].x * params.pixels_per_unit / centre_depth;
+  const float half_step = 0.5f * radius_pixels / static_cast<float>(params.horizon_steps - 1);
   ASSERT_GT(half_step, 3.0f) << "the first tap's range, from 1.6 pixels to half a step, must be wide";
   expect_gpu_equals_reference(h, "corner, a radius of " + std::to_string(radius_pixels) + " pixels");
 }
@@ -241,7 +241,7 @@ TEST_P(Pipeline, PlaneFacingTheCameraGetsTheEstimatorsPlaneValue) {
     // On a plane facing the camera a sample is hidden exactly when it lies more than the bias behind
     // the plane; the turn about the view axis leaves that depth unchanged, so every radius agrees.
     int behind = 0;
-    for (int i = 0; i < samples; ++i) behind += params.kernel[i].z < -params.radius_4_bias.y ? 1 : 0;
+    for (int i = 0; i < samples; ++i) behind += params.kernel[i].z < -params.depth_bias ? 1 : 0;
     const float expected = static_cast<float>(behind) / static_cast<float>(samples);
     const auto raw = h.renderer.read_ao_raw();
     const auto depth = h.renderer.read_linear_depth();
@@ -313,11 +313,11 @@ struct AnalyticCorner {
       tangent = glm::normalize(tangent);
       basis = glm::dmat3(tangent, glm::cross(n, tangent), n);
     }
-    const double r = radius, bias = p.radius_4_bias.y * r, margin = 1e-3 * r;
+    const double r = radius, bias = p.depth_bias * r, margin = 1e-3 * r;
     // The hemisphere moves the stored depth along the shaded point's tangent plane to the sample.
     const auto plane_depth = [&](glm::dvec2 ndc) { return glm::dot(n, position) / glm::dot(n, ray(ndc)); };
     int sure = 0, unsure = 0;
-    for (int i = 0; i < p.counts.x; ++i) {
+    for (int i = 0; i < p.samples; ++i) {
       const glm::dvec3 offset = r * (basis * glm::dvec3(p.kernel[i]));
       const glm::dvec4 clip = glm::dmat4(p.projection) * glm::dvec4(position + offset, 1.0);
       if (clip.w <= 0.0) continue;
@@ -348,7 +348,7 @@ struct AnalyticCorner {
       if (decision == 2) ++unsure;
       else sure += decision;
     }
-    return {static_cast<double>(sure) / p.counts.x, static_cast<double>(sure + unsure) / p.counts.x};
+    return {static_cast<double>(sure) / p.samples, static_cast<double>(sure + unsure) / p.samples};
   }
 
   // Horizon (GTAO, the occluded share of the slices' open arcs), in closed form per slice from the
@@ -358,9 +358,9 @@ struct AnalyticCorner {
     glm::dvec3 n;
     const double d = depth(ndc_of(pixel), &n);
     const glm::dvec3 position = ray(ndc_of(pixel)) * d, view_direction = glm::normalize(-position);
-    const double radius_pixels = radius * p.radius_4_bias.z / d;
+    const double radius_pixels = radius * p.pixels_per_unit / d;
     if (radius_pixels < 1.0) return 0.0;
-    const int steps = p.radius_range.w, slices = std::max(1, p.counts.x / (2 * steps));
+    const int steps = p.horizon_steps, slices = std::max(1, p.samples / (2 * steps));
     const double pi = std::acos(-1.0), turn_angle = std::atan2(turn(pixel).y, turn(pixel).x);
     double occluded = 0.0, open = 0.0;
     for (int slice = 0; slice < slices; ++slice) {
@@ -445,9 +445,9 @@ TEST_P(Pipeline, CornerAndOpenFacesGetEachEstimatorsAnalyticValue) {
     Harness h;
     ASSERT_TRUE(h.start(GetParam(), "builtin:corner", settings, corner_view()));
     const auto& params = h.renderer.ssao_params();
-    ASSERT_EQ(params.radius_range.y - params.radius_range.x, 1);
+    ASSERT_EQ(params.end_radius - params.first_radius, 1);
     const glm::dmat4 camera_view = h.camera.view();
-    const AnalyticCorner corner{params, camera_view, glm::inverse(camera_view), {128, 128}, params.radii_0_3[params.radius_range.x]};
+    const AnalyticCorner corner{params, camera_view, glm::inverse(camera_view), {128, 128}, params.radii[params.first_radius].x};
     const auto ao = h.renderer.read_ao_raw();
     const std::string name(ssao::name(estimator));
     // Per site, the mean over 5x5 pixels (all 16 turns of the tile) and each pixel against its value.
@@ -476,7 +476,7 @@ TEST_P(Pipeline, CornerAndOpenFacesGetEachEstimatorsAnalyticValue) {
             expected_sum += (low + high) / 2.0;
             EXPECT_GE(gpu, low - 1e-3) << what;  // 1e-3: the half float the AO is stored in
             EXPECT_LE(gpu, high + 1e-3) << what;
-            EXPECT_LE(high - low, 3.0 / params.counts.x) << what << ": too many samples on a boundary to judge";
+            EXPECT_LE(high - low, 3.0 / params.samples) << what << ": too many samples on a boundary to judge";
           }
         }
       EXPECT_LE(skipped, 2) << name << ", " << where << ": taps on a texel edge that matters";

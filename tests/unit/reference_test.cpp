@@ -17,7 +17,7 @@ constexpr int kSize = 64;
 shared_layout::SsaoParams params_for(ssao::AoSettings settings, float radius) {
   settings.half_resolution = false;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
-  auto params = ssao::make_ssao_params(settings, radius, kSize, kSize);
+  auto params = ssao::pack_ssao_params(settings, radius, kSize, kSize);
   ssao::FrameView view;
   view.projection = projection;
   view.nearest_depth = view.centre_depth = 5.0f;
@@ -36,8 +36,8 @@ std::vector<ssao::AoTexel> run(const std::vector<float>& depth, const shared_lay
 // samples farther than the bias behind the plane. The turn about the view axis leaves z alone.
 float plane_prediction(const shared_layout::SsaoParams& params) {
   int behind = 0;
-  for (int i = 0; i < params.counts.x; ++i) behind += params.kernel[i].z < -params.radius_4_bias.y ? 1 : 0;
-  return static_cast<float>(behind) / static_cast<float>(params.counts.x);
+  for (int i = 0; i < params.samples; ++i) behind += params.kernel[i].z < -params.depth_bias ? 1 : 0;
+  return static_cast<float>(behind) / static_cast<float>(params.samples);
 }
 
 class ReferenceOnPlane : public ::testing::TestWithParam<ssao::Pattern> {};
@@ -148,7 +148,7 @@ TEST(Reference, HemisphereSamplesDoNotHideBehindTheirOwnSlantedFace) {
       image[static_cast<size_t>(y * kSize + x)] = plane / glm::dot(normal, ray);
     }
   const std::vector<glm::vec3> normals(image.size(), normal);
-  ASSERT_GT(0.1f * params.radius_4_bias.z / 5.0f, 1.0f);  // the radius spans more than a pixel
+  ASSERT_GT(0.1f * params.pixels_per_unit / 5.0f, 1.0f);  // the radius spans more than a pixel
   const auto ao = ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, {}, params, 1.0f / 20.0f, settings.estimator);
   double sum = 0.0;
   for (int y = 4; y < kSize - 4; ++y)
@@ -235,8 +235,11 @@ TEST(Reference, UpsamplingInterpolatesAlongASurfaceAndNotAcrossAnEdge) {
   // Low resolution 3x1: texel 0 AO 1 and texel 1 AO 0.5 on one surface (depths 0.20 and 0.21, 5%
   // apart), texel 2 AO 0 at depth 0.6. Texel i shaded full-resolution pixel 2i.
   shared_layout::UpsampleParams params{};
-  params.config = glm::ivec4(6, 2, 3, 1);
-  params.depth = glm::vec4(1.0f, 0, 0, 0);
+  params.full_width = 6;
+  params.full_height = 2;
+  params.ao_width = 3;
+  params.ao_height = 1;
+  params.inverse_far = 1.0f;
   const std::vector<ssao::AoTexel> low = {{1.0f, 0.2f}, {0.5f, 0.21f}, {0.0f, 0.6f}};
   const std::vector<float> depth = {0.2f, 0.205f, 0.21f, 0.21f, 0.6f, 0.6f,   // row 0
                                     0.2f, 0.6f,   0.21f, 0.6f,  0.3f, 0.0f};  // row 1
@@ -261,8 +264,10 @@ TEST(Reference, UpsamplingWeighsTexelsOffThePixelsTangentPlaneDown) {
   // AO 0), within the 5% depth tolerance, so depth alone cannot tell them apart. Row 1: both texels
   // on the first face.
   shared_layout::UpsampleParams params{};
-  params.config = glm::ivec4(4, 4, 2, 2);
-  params.depth = glm::vec4(1.0f, 0.002f, 0, 0);
+  params.full_width = params.full_height = 4;
+  params.ao_width = params.ao_height = 2;
+  params.inverse_far = 1.0f;
+  params.plane_tolerance = 0.002f;
   params.unproject = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
   const std::vector<ssao::AoTexel> low = {{1.0f, 1.0f}, {0.0f, 1.04f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
   const std::vector<float> depth = {1.0f, 1.0f, 1.04f, 1.04f, 1.0f, 1.0f, 1.04f, 1.04f,
@@ -279,7 +284,7 @@ TEST(Reference, UpsamplingWeighsTexelsOffThePixelsTangentPlaneDown) {
   EXPECT_NEAR(by_plane[1].x, 1.0f, 1e-3f);
   EXPECT_EQ(by_plane[0].x, 1.0f);   // on its own texel, whatever the weights
   EXPECT_EQ(by_plane[9].x, 0.5f);   // row 2 lies on texel row 1: one plane, plain bilinear
-  params.depth.y = 0.0f;            // a tolerance of 0 turns the plane weights off
+  params.plane_tolerance = 0.0f;    // a tolerance of 0 turns the plane weights off
   EXPECT_FLOAT_EQ(ssao::reference_upsample(low, depth, params, normals)[1].x, 0.5f);
 }
 
@@ -289,8 +294,10 @@ TEST(Reference, UpsamplingOnASlantedPlaneIsPlainBilinear) {
   // plane, so the plane weights must leave the bilinear mean as it is. Both terms of a texel's
   // height over the plane (along the pixel's ray and across to the texel's pixel) are at work here.
   shared_layout::UpsampleParams params{};
-  params.config = glm::ivec4(8, 8, 4, 4);
-  params.depth = glm::vec4(1.0f, 0.002f, 0, 0);
+  params.full_width = params.full_height = 8;
+  params.ao_width = params.ao_height = 4;
+  params.inverse_far = 1.0f;
+  params.plane_tolerance = 0.002f;
   params.unproject = glm::vec4(0.8f, 0.6f, 0.3f, -0.2f);
   const glm::vec3 normal = glm::normalize(glm::vec3(0.5f, -0.4f, 1.0f));
   std::vector<float> depth(64);
@@ -317,26 +324,29 @@ TEST(Frame, RadiiUnderAPixelOrBeyondTheSceneAreSkipped) {
   // Radii 8, 4, 2, 1, 0.5 in a scene of radius 1.5 seen from 100 units on a 64-pixel image (77 pixels
   // per unit at depth 1): 8 and 4 exceed the scene's diameter (3); at depth 98.5, radius 1 spans
   // 0.79 pixels and 0.5 spans 0.39, but only radii under a quarter pixel are skipped: none here.
-  auto params = ssao::make_ssao_params(settings, 8.0f, kSize, kSize);
+  auto params = ssao::pack_ssao_params(settings, 8.0f, kSize, kSize);
   ssao::FrameView view;
   view.projection = projection;
   view.centre_depth = 100.0f;
   view.nearest_depth = 98.5f;
   view.scene_radius = 1.5f;
   ssao::update_for_frame(params, settings, view);
-  EXPECT_EQ(params.radius_range.x, 1);  // radius 4 stands for everything larger than the scene
-  EXPECT_EQ(params.radius_range.y, 5);
-  EXPECT_EQ(params.radius_4_bias.w, 0.0f);
+  EXPECT_EQ(params.first_radius, 1);  // radius 4 stands for everything larger than the scene
+  EXPECT_EQ(params.end_radius, 5);
+  EXPECT_EQ(params.skipped_radii_ao, 0.0f);
   view.nearest_depth = view.centre_depth = 400.0f;  // now 1 spans 0.19 pixels and 0.5 spans 0.1
   ssao::update_for_frame(params, settings, view);
-  EXPECT_EQ(params.radius_range.y, 3);
+  EXPECT_EQ(params.end_radius, 3);
   int behind = 0;
-  for (int i = 0; i < params.counts.x; ++i) behind += params.kernel[i].z < -settings.bias ? 1 : 0;
-  EXPECT_EQ(params.radius_4_bias.w, static_cast<float>(behind) / static_cast<float>(params.counts.x));
+  for (int i = 0; i < params.samples; ++i) behind += params.kernel[i].z < -settings.bias ? 1 : 0;
+  EXPECT_EQ(params.skipped_radii_ao, static_cast<float>(behind) / static_cast<float>(params.samples));
   settings.skip_radii = false;
   ssao::update_for_frame(params, settings, view);
-  EXPECT_EQ(params.radius_range, glm::ivec4(0, 5, 0, ssao::horizon_steps(settings)));
-  EXPECT_EQ(params.radius_4_bias.w, 0.0f);
+  EXPECT_EQ(params.first_radius, 0);
+  EXPECT_EQ(params.end_radius, 5);
+  EXPECT_EQ(params.shade_background, 0);
+  EXPECT_EQ(params.horizon_steps, ssao::horizon_steps(settings));
+  EXPECT_EQ(params.skipped_radii_ao, 0.0f);
 }
 
 TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
@@ -351,7 +361,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
   settings.depth_chain = false;
   settings.half_resolution = false;
   const glm::mat4 projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 20.0f);
-  auto params = ssao::make_ssao_params(settings, 0.01f, kSize, kSize);  // 0.01 * 77 / 5 = 0.15 pixels
+  auto params = ssao::pack_ssao_params(settings, 0.01f, kSize, kSize);  // 0.01 * 77 / 5 = 0.15 pixels
   ssao::FrameView view;
   view.projection = projection;
   view.nearest_depth = view.centre_depth = 5.0f;
@@ -361,13 +371,13 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
   const auto computed = run(image, params);
   settings.skip_radii = true;
   ssao::update_for_frame(params, settings, view);
-  ASSERT_EQ(params.radius_range.y, params.radius_range.x + 1);  // the one radius is always kept...
+  ASSERT_EQ(params.end_radius, params.first_radius + 1);  // the one radius is always kept...
   settings.radii = 2;  // ...so skip the second of two instead
-  auto two = ssao::make_ssao_params(settings, 0.02f, kSize, kSize);
+  auto two = ssao::pack_ssao_params(settings, 0.02f, kSize, kSize);
   ssao::update_for_frame(two, settings, view);
-  ASSERT_EQ(two.radius_range.y, 1);
-  two.radius_range.x = 0;
-  two.radii_0_3.x = 0.0f;  // the kept radius contributes nothing, so only the substitute is left
+  ASSERT_EQ(two.end_radius, 1);
+  two.first_radius = 0;
+  two.radii[0].x = 0.0f;  // the kept radius contributes nothing, so only the substitute is left
   const auto substituted = run(image, two);
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
@@ -380,25 +390,25 @@ TEST(Frame, LargeRadiiReadCoarserDepthLevels) {
   ssao::AoSettings settings;
   settings.radii = 5;
   settings.depth_chain = true;
-  auto params = ssao::make_ssao_params(settings, 2.0f, 1024, 768);
+  auto params = ssao::pack_ssao_params(settings, 2.0f, 1024, 768);
   ssao::FrameView view;
   view.projection = glm::perspective(glm::radians(45.0f), 4.0f / 3.0f, 0.5f, 50.0f);
   view.centre_depth = view.nearest_depth = 5.0f;
   view.scene_radius = 3.0f;
   ssao::update_for_frame(params, settings, view);
   // Radius 2 at depth 5 spans 2 * 927 / 5 = 371 pixels: level floor(log2(371 / 16)) = 4; radius 0.125: 23 pixels: level 0.
-  EXPECT_EQ(params.lods_0_3.x, 4);
-  EXPECT_EQ(params.config.x, 0);
+  EXPECT_EQ(params.levels[0].x, 4);
+  EXPECT_EQ(params.levels[4].x, 0);
   settings.depth_chain = false;
   ssao::update_for_frame(params, settings, view);
-  EXPECT_EQ(params.lods_0_3, glm::ivec4(0));
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(params.levels[k].x, 0) << "radius " << k;
 }
 
 TEST(Reference, GaussianBlurPreservesAConstantAndBilateralStopsAtDepthEdges) {
   constexpr int w = 32, h = 8;
   ssao::BlurSettings blur;
   std::vector<ssao::AoTexel> constant(w * h, ssao::AoTexel(0.25f, 0.5f));
-  const auto params = ssao::make_blur_params(blur, 0, w, h);
+  const auto params = ssao::pack_blur_params(blur, 0, w, h);
   for (const auto& texel : ssao::reference_blur(constant, params, ssao::Blur::gaussian)) EXPECT_NEAR(texel.x, 0.25f, 1e-3);
   // AO 1 at depth 0.2 on the left, AO 0 at depth 0.6 on the right.
   std::vector<ssao::AoTexel> edge(w * h);
@@ -420,7 +430,7 @@ TEST(Reference, DenoiseAlsoStopsAtCreasesWhereDepthRunsOn) {
   constexpr int w = 32, h = 8;
   ssao::BlurSettings blur;
   for (int shift : {0, 1}) {
-    const auto params = ssao::make_blur_params(blur, 0, w, h, shift);
+    const auto params = ssao::pack_blur_params(blur, 0, w, h, shift);
     std::vector<ssao::AoTexel> crease(w * h);
     const int full_w = w << shift, full_h = h << shift;
     std::vector<glm::vec3> normals(static_cast<size_t>(full_w * full_h));
@@ -476,7 +486,7 @@ TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
       EXPECT_GE(turn, 0.0);
       EXPECT_LT(turn, 1.0 + 1e-6);
       shares.push_back(turn);
-      for (int i = 0; i < params.counts.x; ++i) EXPECT_EQ(params.kernel[i], base.kernel[i]) << "frame " << frame;
+      for (int i = 0; i < params.samples; ++i) EXPECT_EQ(params.kernel[i], base.kernel[i]) << "frame " << frame;
     }
     std::sort(shares.begin(), shares.end());
     double largest = 1.0 - shares.back() + shares.front();

@@ -324,8 +324,11 @@ TEST(Blur, WeightsAreAGaussianOfTheStatedSigma) {
       ssao::BlurSettings settings;
       settings.sigma = sigma;
       settings.radius = radius;
-      const auto params = ssao::make_blur_params(settings, 0, 64, 32);
-      EXPECT_EQ(params.config, glm::ivec4(radius, 0, 64, 32));
+      const auto params = ssao::pack_blur_params(settings, 0, 64, 32);
+      EXPECT_EQ(params.radius, radius);
+      EXPECT_EQ(params.direction, 0);
+      EXPECT_EQ(params.width, 64);
+      EXPECT_EQ(params.height, 32);
       const auto expected = normalised_gaussian(sigma, radius);
       double sum = 0.0;
       for (int i = 0; i <= radius; ++i) sum += (i == 0 ? 1.0 : 2.0) * params.weights[i].x;
@@ -339,7 +342,7 @@ TEST(Blur, WeightsAreAGaussianOfTheStatedSigma) {
   EXPECT_EQ(defaults.sigma, 2.0f);
   ssao::BlurSettings too_wide;
   too_wide.radius = 3 * BLUR_MAX_RADIUS;
-  EXPECT_EQ(ssao::make_blur_params(too_wide, 1, 8, 8).config.x, BLUR_MAX_RADIUS);
+  EXPECT_EQ(ssao::pack_blur_params(too_wide, 1, 8, 8).radius, BLUR_MAX_RADIUS);
 }
 
 TEST(Blur, ReferenceBlurOfAnImpulseIsTheNormalisedGaussian) {
@@ -352,7 +355,7 @@ TEST(Blur, ReferenceBlurOfAnImpulseIsTheNormalisedGaussian) {
     settings.radius = 5;
     constexpr int kLength = 2 * 5 + 9;
     const int width = direction == 0 ? kLength : 3, height = direction == 0 ? 3 : kLength;
-    const auto params = ssao::make_blur_params(settings, direction, width, height);
+    const auto params = ssao::pack_blur_params(settings, direction, width, height);
     std::vector<ssao::AoTexel> image(static_cast<size_t>(width * height), ssao::AoTexel(0.0f, 0.5f));
     const glm::ivec2 centre(width / 2, height / 2);
     image[static_cast<size_t>(centre.y * width + centre.x)].x = 1.0f;

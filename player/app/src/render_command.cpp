@@ -42,11 +42,9 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
   const shared_layout::SsaoParams& params = renderer.ssao_params();
   nlohmann::json radii = nlohmann::json::array();
-  const float all_radii[5] = {params.radii_0_3.x, params.radii_0_3.y, params.radii_0_3.z, params.radii_0_3.w,
-                              params.radius_4_bias.x};
-  for (int k = 0; k < params.counts.y; ++k) radii.push_back(all_radii[k]);
+  for (int k = 0; k < params.radius_count; ++k) radii.push_back(params.radii[k].x);
   nlohmann::json kernel = nlohmann::json::array();
-  for (int i = 0; i < params.counts.x; ++i) kernel.push_back({params.kernel[i].x, params.kernel[i].y, params.kernel[i].z});
+  for (int i = 0; i < params.samples; ++i) kernel.push_back({params.kernel[i].x, params.kernel[i].y, params.kernel[i].z});
   const render::FrameSettings& frame = options.frame;
   nlohmann::json doc = {
       {"scene", options.scene},
@@ -71,9 +69,9 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
         {"resolution", frame.ao_settings.half_resolution ? "half" : "full"},
         {"depth_chain", frame.ao_settings.depth_chain},
         {"skip_radii", frame.ao_settings.skip_radii},
-        {"samples", params.counts.x},
+        {"samples", params.samples},
         {"radii", radii},
-        {"bias_fraction", params.radius_4_bias.y},
+        {"bias_fraction", params.depth_bias},
         {"pattern", std::string(ssao::name(frame.ao_settings.pattern))},
         {"kernel_unit_ball", kernel},
         {"blur", std::string(ssao::name(frame.blur.mode))},

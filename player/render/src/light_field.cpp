@@ -184,8 +184,8 @@ void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTar
       gl::api.Disable(GL_SCISSOR_TEST);
       continue;
     }
-    const Frame frame{programs, scene, targets, views_[static_cast<size_t>(k)], nullptr, gl_error};
-    render_view(frame, PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, fade);
+    const PassContext context{programs, scene, targets, views_[static_cast<size_t>(k)], nullptr, gl_error};
+    render_view(context, PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, fade);
     if (after_view) after_view(k, views_[static_cast<size_t>(k)], targets);
   }
   if (quilt()) {

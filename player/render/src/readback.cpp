@@ -1,6 +1,7 @@
 #include "render/readback.h"
 
 #include "gl_util.h"
+#include "render/uniform_blocks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +86,7 @@ std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets&
   if (!settings.ao_settings.half_resolution) return read_ao(targets.ao_result(), targets.ao_width(), targets.ao_height());
   const int w = settings.width, h = settings.height;
   gl::Texture full = detail::make_target(GL_RGBA16F, w, h);
-  const shared_layout::UpsampleParams params = upsample_params(targets);
+  const shared_layout::UpsampleParams params = pack_upsample_params(targets);
   gl::Buffer ubo = detail::make_uniform_buffer(&params, sizeof params);
   gl::api.UseProgram(programs.upsample.id());
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_UPSAMPLE_PARAMS, ubo.id());
@@ -96,15 +97,6 @@ std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets&
   gl::api.DispatchCompute(detail::groups(w, SSAO_GROUP_SIZE), detail::groups(h, SSAO_GROUP_SIZE), 1);
   gl::api.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   return read_ao(full, w, h);
-}
-
-shared_layout::UpsampleParams upsample_params(const ViewTargets& targets) {
-  shared_layout::UpsampleParams params{};
-  params.config = glm::ivec4(targets.settings().width, targets.settings().height, targets.ao_width(), targets.ao_height());
-  // Depths are compared as depth / far: the same 1/far the present pass scaled them with.
-  params.depth = glm::vec4(targets.last_inverse_far, targets.upsample_plane_tolerance(), 0.0f, 0.0f);
-  params.unproject = targets.ssao_params.unproject;
-  return params;
 }
 
 WorldSurface read_world_surface(const ViewTargets& targets, const View& view) {

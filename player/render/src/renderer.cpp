@@ -38,8 +38,8 @@ void Renderer::render(const View& view, float fade) {
   view_ = view;
   inverse_far_ = static_cast<float>(1.0 / view.far);
   timer_.begin_frame();
-  const Frame frame{programs_, scene_, targets_, view_, &timer_, &gl_error_};
-  render_view(frame, target_, fade);
+  const PassContext context{programs_, scene_, targets_, view_, &timer_, &gl_error_};
+  render_view(context, target_, fade);
   timer_.end_frame();
 }
 

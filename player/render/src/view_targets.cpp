@@ -34,10 +34,10 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
 
   const int w = settings.width, h = settings.height;
   base_radius = settings.radius > 0.0f ? settings.radius : static_cast<float>(0.1 * scene_radius);
-  ssao_params = ssao::make_ssao_params(settings.ao_settings, base_radius, w, h);
+  ssao_params = ssao::pack_ssao_params(settings.ao_settings, base_radius, w, h);
   for (int direction = 0; direction < 2; ++direction)
     blur_params[direction] =
-        ssao::make_blur_params(settings.blur, direction, ao_width(), ao_height(), settings.ao_settings.half_resolution ? 1 : 0);
+        ssao::pack_blur_params(settings.blur, direction, ao_width(), ao_height(), settings.ao_settings.half_resolution ? 1 : 0);
 
   const bool reallocate =
       w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || modules != modules_ || !gbuffer_fbo;

@@ -18,17 +18,25 @@ int horizon_steps(const AoSettings& settings) {
   return std::clamp(settings.steps, 1, std::max(1, samples / 2));
 }
 
-shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
+shared_layout::SsaoParams pack_ssao_params(const AoSettings& settings, float base_radius, int width, int height) {
   shared_layout::SsaoParams params{};
   const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);
   const int radii = std::clamp(settings.radii, 1, SSAO_MAX_RADII);
   const std::span<const float> scales = radius_scales();
-  params.radii_0_3 = glm::vec4(base_radius * scales[0], base_radius * scales[1], base_radius * scales[2], base_radius * scales[3]);
-  params.radius_4_bias = glm::vec4(base_radius * scales[4], settings.bias, 0.0f, 0.0f);
+  for (int k = 0; k < SSAO_MAX_RADII; ++k) params.radii[k].x = base_radius * scales[static_cast<size_t>(k)];
+  params.depth_bias = settings.bias;
   const int shift = settings.half_resolution ? 1 : 0;
-  params.counts = glm::ivec4(samples, radii, (width + shift) >> shift, (height + shift) >> shift);
-  params.config = glm::ivec4(0, shift, width, height);
-  params.radius_range = glm::ivec4(0, radii, settings.skip_background ? 0 : 1, horizon_steps(settings));
+  params.samples = samples;
+  params.radius_count = radii;
+  params.ao_width = (width + shift) >> shift;
+  params.ao_height = (height + shift) >> shift;
+  params.ao_shift = shift;
+  params.full_width = width;
+  params.full_height = height;
+  params.first_radius = 0;
+  params.end_radius = radii;
+  params.shade_background = settings.skip_background ? 0 : 1;
+  params.horizon_steps = horizon_steps(settings);
   const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
   for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
   const std::span<const float> angles = rotation_angles();
@@ -72,50 +80,52 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
   const glm::mat4& projection = view.projection;
   params.projection = projection;
   params.unproject = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
-  const float pixels_per_unit = projection[1][1] * static_cast<float>(params.config.w) * 0.5f;
-  params.radius_4_bias.z = pixels_per_unit;
-  const int radii = params.counts.y;
-  const float radius[SSAO_MAX_RADII] = {params.radii_0_3.x, params.radii_0_3.y, params.radii_0_3.z, params.radii_0_3.w,
-                                        params.radius_4_bias.x};
+  const float pixels_per_unit = projection[1][1] * static_cast<float>(params.full_height) * 0.5f;
+  params.pixels_per_unit = pixels_per_unit;
+  const int radii = params.radius_count;
+  const auto radius = [&params](int k) { return params.radii[k].x; };
   // Radii come largest first. One far beyond the scene's size sees the same as the largest one that
   // fits. One under a quarter pixel even where the scene is nearest keeps every sample in the shaded
   // pixel itself, so its result is known without looking: the sphere estimator then hides exactly the
   // samples more than the bias behind the point (whatever the turn); the hemisphere's, all above
   // the tangent plane it compares against, and the horizon's, under a pixel, hide none.
   int first = 0, end = radii;
-  params.radius_4_bias.w = 0.0f;
+  params.skipped_radii_ao = 0.0f;
   if (settings.skip_radii) {
     const float too_large = 2.0f * view.scene_radius;
-    while (first + 1 < radii && radius[first + 1] >= too_large) ++first;
-    while (end > first + 1 && radius[end - 1] * pixels_per_unit / view.nearest_depth < 0.25f) --end;
+    while (first + 1 < radii && radius(first + 1) >= too_large) ++first;
+    while (end > first + 1 && radius(end - 1) * pixels_per_unit / view.nearest_depth < 0.25f) --end;
     if (end < radii && settings.estimator == Estimator::sphere) {
       int behind = 0;
-      for (int i = 0; i < params.counts.x; ++i) behind += params.kernel[i].z < -params.radius_4_bias.y ? 1 : 0;
-      params.radius_4_bias.w = static_cast<float>(behind) / static_cast<float>(params.counts.x);
+      for (int i = 0; i < params.samples; ++i) behind += params.kernel[i].z < -params.depth_bias ? 1 : 0;
+      params.skipped_radii_ao = static_cast<float>(behind) / static_cast<float>(params.samples);
     }
   }
-  params.radius_range = glm::ivec4(first, end, settings.skip_background ? 0 : 1, horizon_steps(settings));
+  params.first_radius = first;
+  params.end_radius = end;
+  params.shade_background = settings.skip_background ? 0 : 1;
+  params.horizon_steps = horizon_steps(settings);
   // A radius spanning 2^(k+4) pixels at the scene's centre reads level k: about 16 depth texels
   // across the radius, which is all the point samples can tell apart.
-  const int max_level = depth_chain_levels(params.config.z, params.config.w) - 1;
-  int levels[SSAO_MAX_RADII] = {};
-  for (int k = 0; k < radii; ++k) {
-    if (!settings.depth_chain) continue;
-    const float span = radius[k] * pixels_per_unit / view.centre_depth;
-    levels[k] = span > 32.0f ? std::min(static_cast<int>(std::floor(std::log2(span / 16.0f))), max_level) : 0;
+  const int max_level = depth_chain_levels(params.full_width, params.full_height) - 1;
+  for (int k = 0; k < SSAO_MAX_RADII; ++k) {
+    const float span = radius(k) * pixels_per_unit / view.centre_depth;
+    const bool coarse = settings.depth_chain && k < radii && span > 32.0f;
+    params.levels[k].x = coarse ? std::min(static_cast<int>(std::floor(std::log2(span / 16.0f))), max_level) : 0;
   }
-  params.lods_0_3 = glm::ivec4(levels[0], levels[1], levels[2], levels[3]);
-  params.config.x = levels[4];
 }
 
-shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height, int shift) {
+shared_layout::BlurParams pack_blur_params(const BlurSettings& settings, int direction, int width, int height, int shift) {
   shared_layout::BlurParams params{};
   const int radius = std::clamp(settings.radius, 1, BLUR_MAX_RADIUS);
   for (int i = 0; i <= radius; ++i)
     params.weights[i].x = std::exp(-static_cast<float>(i * i) / (2.0f * settings.sigma * settings.sigma));
-  params.config = glm::ivec4(radius, direction, width, height);
-  params.bilateral = glm::vec4(settings.depth_tolerance, 0.0f, 0.0f, 0.0f);
-  params.source = glm::ivec4(shift, 0, 0, 0);
+  params.radius = radius;
+  params.direction = direction;
+  params.width = width;
+  params.height = height;
+  params.ao_shift = shift;
+  params.depth_tolerance = settings.depth_tolerance;
   return params;
 }
 

@@ -37,13 +37,14 @@ size_t index(glm::ivec2 p, int width) { return static_cast<size_t>(p.y) * static
 
 bool outside(glm::ivec2 p, glm::ivec2 size) { return p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y; }
 
-struct Frame {
+// ssao.comp on the CPU: the block and depth chain it reads, and its functions over them.
+struct SsaoMirror {
   const DepthChain& depth;
   const shared_layout::SsaoParams& p;
   glm::ivec2 full;
 
-  float radius_at(int k) const { return k < 4 ? p.radii_0_3[k] : p.radius_4_bias.x; }
-  int level_at(int k) const { return k < 4 ? p.lods_0_3[k] : p.config.x; }
+  float radius_at(int k) const { return p.radii[k].x; }
+  int level_at(int k) const { return p.levels[k].x; }
   float depth_at(glm::ivec2 texel, int level) const {
     const glm::ivec2 size = depth.sizes[static_cast<size_t>(level)];
     return depth.at(glm::min(glm::ivec2(texel.x >> level, texel.y >> level), size - 1), level);
@@ -67,11 +68,11 @@ struct Frame {
   float hidden_share(glm::vec3 position, float d, const glm::mat3& basis, float radius, int level, bool mediump,
                      bool shift_to_sample) const {
     const auto sample_precision = [mediump](float v) { return mediump ? to_half(v) : v; };
-    const float bias = sample_precision(p.radius_4_bias.y * radius);
+    const float bias = sample_precision(p.depth_bias * radius);
     const glm::vec4 clip_centre = p.projection * glm::vec4(position, 1.0f);
     const float plane = glm::dot(basis[2], position);
     int hidden = 0;
-    for (int i = 0; i < p.counts.x; ++i) {
+    for (int i = 0; i < p.samples; ++i) {
       glm::vec3 offset = radius * (basis * glm::vec3(p.kernel[i]));
       for (int c = 0; c < 3; ++c) offset[c] = sample_precision(offset[c]);
       const glm::vec4 clip = clip_centre + p.projection * glm::vec4(offset, 0.0f);
@@ -86,16 +87,16 @@ struct Frame {
       const float sample_offset = sample_precision(-offset.z);
       if (surface > 0.0f && surface_offset < sample_offset - bias && std::abs(surface_offset) < radius) ++hidden;
     }
-    return static_cast<float>(hidden) / static_cast<float>(p.counts.x);
+    return static_cast<float>(hidden) / static_cast<float>(p.samples);
   }
 
   // No `mediump` here: ssao.comp's horizon keeps every per-tap value highp in its mediump variant.
   float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, glm::vec3 face, float d,
                           float turn_angle, float tap_jitter, float radius, int level) const {
-    const float radius_pixels = radius * p.radius_4_bias.z / d;
+    const float radius_pixels = radius * p.pixels_per_unit / d;
     if (radius_pixels < 1.0f) return 0.0f;
-    const int steps = p.radius_range.w;
-    const int slices = std::max(1, p.counts.x / (2 * steps));
+    const int steps = p.horizon_steps;
+    const int slices = std::max(1, p.samples / (2 * steps));
     const glm::vec3 view = glm::normalize(-position);
     // ssao.comp's per-pixel form of view_position for the taps.
     const glm::vec2 unproject_scale(p.unproject.x, p.unproject.y), unproject_shift(p.unproject.z, p.unproject.w);
@@ -202,19 +203,19 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
                                     const std::vector<glm::vec3>& view_face_normals,
                                     const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
                                     bool mediump) {
-  const Frame frame{depth, params, glm::ivec2(params.config.z, params.config.w)};
-  const int width = params.counts.z, height = params.counts.w;
+  const SsaoMirror shader{depth, params, glm::ivec2(params.full_width, params.full_height)};
+  const int width = params.ao_width, height = params.ao_height;
   std::vector<AoTexel> out(static_cast<size_t>(width) * static_cast<size_t>(height), AoTexel(0.0f));
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      const glm::ivec2 pixel(x << params.config.y, y << params.config.y);
+      const glm::ivec2 pixel(x << params.ao_shift, y << params.ao_shift);
       const float d = depth.at(pixel, 0);
       if (d <= 0.0f) continue;
-      const glm::vec3 position = frame.view_position(pixel, d);
+      const glm::vec3 position = shader.view_position(pixel, d);
       const glm::vec4 tile_entry = params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
       const glm::vec2 turn(tile_entry);
-      const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, frame.full.x)];
-      const glm::vec3 face = view_face_normals.empty() ? normal : view_face_normals[index(pixel, frame.full.x)];
+      const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, shader.full.x)];
+      const glm::vec3 face = view_face_normals.empty() ? normal : view_face_normals[index(pixel, shader.full.x)];
       glm::mat3 basis(turn.x, turn.y, 0.0f, -turn.y, turn.x, 0.0f, 0.0f, 0.0f, 1.0f);
       if (estimator == Estimator::hemisphere) {
         const glm::vec3 reference(turn, 0.0f);
@@ -226,13 +227,13 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
         tangent = glm::normalize(tangent);
         basis = glm::mat3(tangent, glm::cross(normal, tangent), normal);
       }
-      float ao = params.radius_4_bias.w;
-      for (int k = params.radius_range.x; k < params.radius_range.y; ++k) {
-        const float radius = frame.radius_at(k);
-        const int level = frame.level_at(k);
+      float ao = params.skipped_radii_ao;
+      for (int k = params.first_radius; k < params.end_radius; ++k) {
+        const float radius = shader.radius_at(k);
+        const int level = shader.level_at(k);
         ao = std::max(ao, estimator == Estimator::horizon
-                              ? frame.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), tile_entry.z, radius, level)
-                              : frame.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
+                              ? shader.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), tile_entry.z, radius, level)
+                              : shader.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));
     }
@@ -245,10 +246,10 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
   const bool bilateral = mode == Blur::bilateral || mode == Blur::denoise;
   const bool denoise = mode == Blur::denoise;
   const auto normal_at = [&](glm::ivec2 texel) {
-    return view_normals[index(texel * (1 << params.source.x), full_width)];
+    return view_normals[index(texel * (1 << params.ao_shift), full_width)];
   };
-  const int width = params.config.z, height = params.config.w;
-  const glm::ivec2 step = params.config.y == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
+  const int width = params.width, height = params.height;
+  const glm::ivec2 step = params.direction == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
   std::vector<AoTexel> out(source.size());
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
@@ -261,13 +262,13 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
       }
       float sum = centre.x * params.weights[0].x;
       float total = params.weights[0].x;
-      for (int i = 1; i <= params.config.x; ++i) {
+      for (int i = 1; i <= params.radius; ++i) {
         for (int side = -1; side <= 1; side += 2) {
           const glm::ivec2 tap = glm::clamp(pixel + side * i * step, glm::ivec2(0), glm::ivec2(width - 1, height - 1));
           const AoTexel value = source[index(tap, width)];
           float weight = params.weights[i].x;
           if (bilateral) {
-            const float tolerance = params.bilateral.x * centre.y;
+            const float tolerance = params.depth_tolerance * centre.y;
             const float difference = (value.y - centre.y) / tolerance;
             weight *= value.y > 0.0f ? std::exp(-difference * difference) : 0.0f;
           }
@@ -290,12 +291,12 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
                                         const shared_layout::UpsampleParams& params,
                                         const std::vector<glm::vec3>& view_normals) {
-  const glm::ivec2 full(params.config.x, params.config.y), small(params.config.z, params.config.w);
-  const float plane_tolerance = view_normals.empty() ? 0.0f : params.depth.y;
+  const glm::ivec2 full(params.full_width, params.full_height), small(params.ao_width, params.ao_height);
+  const float plane_tolerance = view_normals.empty() ? 0.0f : params.plane_tolerance;
   std::vector<AoTexel> out(static_cast<size_t>(full.x) * static_cast<size_t>(full.y), AoTexel(0.0f));
   for (int y = 0; y < full.y; ++y)
     for (int x = 0; x < full.x; ++x) {
-      const float depth = linear_depth[index({x, y}, full.x)] * params.depth.x;
+      const float depth = linear_depth[index({x, y}, full.x)] * params.inverse_far;
       if (depth <= 0.0f) continue;
       // upsample.glsl: bilinear among the texels on the pixel's own surface, weighed down the further
       // their points lie off its tangent plane; else the closest in depth.
@@ -312,7 +313,7 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
           if (weight <= 0.0f) continue;
           const glm::ivec2 texel = glm::min(glm::ivec2(x >> 1, y >> 1) + glm::ivec2(dx, dy), small - 1);
           const float value = low[index(texel, small.x)].x;
-          const float texel_depth = linear_depth[index(texel * 2, full.x)] * params.depth.x;
+          const float texel_depth = linear_depth[index(texel * 2, full.x)] * params.inverse_far;
           if (texel_depth <= 0.0f) continue;
           const float difference = std::abs(texel_depth - depth);
           if (difference < best_difference) {

@@ -109,7 +109,7 @@ void FrameDrawer::draw(float fade) {
     light_field_.render(programs_, *gpu_, light_field_targets_, fade, false, {}, &gl_error_);
     light_field_.present(programs_, present_, rotation_.width(), rotation_.height());
   } else if (gpu_ != nullptr) {
-    const render::Frame pass{programs_, *gpu_, targets_, view_, &timer_, &gl_error_};
+    const render::PassContext pass{programs_, *gpu_, targets_, view_, &timer_, &gl_error_};
     render::render_view(pass, present_, fade);
   } else {
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer);

@@ -1,6 +1,6 @@
 #pragma once
 // The frame, one function per pass. Each records into the view's targets; none allocates, throws
-// or waits on the GPU. A GL error is recorded by the Frame, not raised.
+// or waits on the GPU. A GL error is recorded by the PassContext, not raised.
 #include "gl/frame_timer.h"
 #include "render/programs.h"
 #include "render/scene_gpu.h"
@@ -24,7 +24,7 @@ struct PresentTarget {
 };
 
 // What every pass of one frame of one view shares.
-struct Frame {
+struct PassContext {
   Programs& programs;
   const SceneGpu& scene;
   ViewTargets& targets;
@@ -34,16 +34,16 @@ struct Frame {
   void finish_pass(int pass) const;  // error check and timer mark
 };
 
-void depth_prepass(const Frame& frame);
-void gbuffer_pass(const Frame& frame, bool after_prepass);
+void depth_prepass(const PassContext& context);
+void gbuffer_pass(const PassContext& context, bool after_prepass);
 // The AO passes (depth chain, SSAO, temporal accumulation, blur). Returns false when the last
 // frame's AO was kept instead.
-bool ao_passes(const Frame& frame);
+bool ao_passes(const PassContext& context);
 // Upsampling (when AO is at half resolution), shading and sRGB encoding, into `target`. `fade`
 // multiplies the image (transitions between playlist items).
-void present_pass(const Frame& frame, const PresentTarget& target, float fade);
+void present_pass(const PassContext& context, const PresentTarget& target, float fade);
 
 // All of them in order for one view, choosing the prepass as the settings say.
-void render_view(const Frame& frame, const PresentTarget& target, float fade);
+void render_view(const PassContext& context, const PresentTarget& target, float fade);
 
 }  // namespace render

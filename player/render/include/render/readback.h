@@ -25,8 +25,6 @@ std::vector<float> read_history_frames(const ViewTargets& targets);
 // The AO the present pass shaded with, at full resolution: upsampled exactly as the present pass
 // does it (the same GLSL function) when AO runs at half resolution.
 std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets& targets);
-// What that upsampling reads: full and AO sizes, and the 1/far of the last frame.
-shared_layout::UpsampleParams upsample_params(const ViewTargets& targets);
 
 // The visible surface in world space, rows bottom-up: positions and normals with alpha 1 on objects
 // and 0 on background, and linear depth. Rebuilt from the G-buffer exactly as ssao.comp rebuilds it,

@@ -10,6 +10,7 @@
 #include "render/readback.h"
 #include "render/scene_gpu.h"
 #include "render/settings.h"
+#include "render/uniform_blocks.h"
 #include "render/view.h"
 #include "render/view_targets.h"
 
@@ -57,7 +58,7 @@ class Renderer {
 
   const shared_layout::SsaoParams& ssao_params() const { return targets_.ssao_params; }
   const shared_layout::BlurParams& blur_params(int direction) const { return targets_.blur_params[direction]; }
-  shared_layout::UpsampleParams upsample_params() const { return render::upsample_params(targets_); }
+  shared_layout::UpsampleParams upsample_params() const { return render::pack_upsample_params(targets_); }
   bool reused_ao() const { return targets_.reused_ao; }
   // Frames the AO shown is the average of (1 without temporal accumulation).
   int ao_frames_averaged() const { return targets_.temporal() ? std::max(targets_.still_frames, 1) : 1; }

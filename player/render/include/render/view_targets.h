@@ -23,8 +23,8 @@ class ViewTargets {
   void reset_history();
 
   const FrameSettings& settings() const { return settings_; }
-  int ao_width() const { return ssao_params.counts.z; }
-  int ao_height() const { return ssao_params.counts.w; }
+  int ao_width() const { return ssao_params.ao_width; }
+  int ao_height() const { return ssao_params.ao_height; }
   // Whether this view accumulates AO over frames (LightFieldOutput turns it off: its views share
   // one set of targets, so the previous frame there is another view's).
   bool temporal() const { return settings_.temporal; }

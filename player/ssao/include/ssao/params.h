@@ -60,12 +60,14 @@ struct BlurSettings {
 // makes samples / (2 x steps) slices of them.
 int horizon_steps(const AoSettings& settings);
 
-// The fixed part of the SSAO block; `base_radius` is in world (= view) units; width and height are
-// the full resolution (the AO resolution follows from settings.half_resolution).
-shared_layout::SsaoParams make_ssao_params(const AoSettings& settings, float base_radius, int width, int height);
+// The SSAO block from the settings, with what no frame changes; `base_radius` is in world (= view)
+// units; width and height are the full resolution (the AO resolution follows from
+// settings.half_resolution). update_for_frame and advance_frame fill in the rest each frame.
+shared_layout::SsaoParams pack_ssao_params(const AoSettings& settings, float base_radius, int width, int height);
 
 // What the camera decides each frame: the projection, and from the scene's depth range which radii
-// are worth computing and which depth-chain level each one reads.
+// are worth computing (first_radius, end_radius, skipped_radii_ao) and which depth-chain level each
+// one reads.
 struct FrameView {
   glm::mat4 projection{1.0f};
   float nearest_depth = 1.0f;  // closest the scene's bounding sphere comes to the eye (>= near)
@@ -78,15 +80,15 @@ void update_for_frame(shared_layout::SsaoParams& params, const AoSettings& setti
 // rotation tile turns by the frame's share of a whole circle, from a low-discrepancy sequence, so
 // over frames every pixel sees every direction evenly instead of repeating the tile; and the
 // horizon's taps move along their steps (rotation[i].z, 0.5 for the ends of the steps, which is where
-// make_ssao_params leaves them for a single frame) by the golden ratio's sequence, each entry from its own
+// pack_ssao_params leaves them for a single frame) by the golden ratio's sequence, each entry from its own
 // start, so over frames they cover the whole slice rather than a few fixed distances. The kernel
 // never changes. The CPU reference reads the same block, so it follows.
 void advance_frame(shared_layout::SsaoParams& params, unsigned frame);
 
 // Levels of the depth chain for a full-resolution image (level 0 included).
 int depth_chain_levels(int width, int height);
-// direction 0: horizontal, 1: vertical; width and height are the AO resolution's, `shift` its
-// factor from the full resolution (0 or 1).
-shared_layout::BlurParams make_blur_params(const BlurSettings& settings, int direction, int width, int height, int shift = 0);
+// The blur block of one pass. direction 0: horizontal, 1: vertical; width and height are the AO
+// resolution's, `shift` its factor from the full resolution (0 or 1).
+shared_layout::BlurParams pack_blur_params(const BlurSettings& settings, int direction, int width, int height, int shift = 0);
 
 }  // namespace ssao

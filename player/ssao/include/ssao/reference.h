@@ -36,8 +36,8 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
 std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params, Blur mode,
                                     const std::vector<glm::vec3>& view_normals = {}, int full_width = 0);
 // upsample.glsl: `low` supplies the AO (x); each texel's depth is `linear_depth` (full resolution,
-// times UpsampleParams.depth.x) at the pixel it shaded. `view_normals` (full resolution, view
-// space): the pixels' tangent planes for the plane weights (UpsampleParams.depth.y); empty weighs by
+// times UpsampleParams.inverse_far) at the pixel it shaded. `view_normals` (full resolution, view
+// space): the pixels' tangent planes for the plane weights (UpsampleParams.plane_tolerance); empty weighs by
 // depth alone.
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
                                         const shared_layout::UpsampleParams& params,

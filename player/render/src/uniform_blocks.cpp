@@ -1,0 +1,103 @@
+#include "render/uniform_blocks.h"
+
+namespace render {
+namespace {
+
+// How far a history texel's depth may differ from the reprojected point's, relative to that depth,
+// and how far its normal may turn, before it counts as another surface (a disocclusion). The depth
+// tolerance covers a slanted face's change across the bilinear footprint; the normal test catches
+// what depth cannot tell apart, such as a crease.
+constexpr float kHistoryDepthTolerance = 0.03f;
+constexpr float kHistoryNormalCosine = 0.9f;
+
+// The shaded image's light: one directional light in view space (from the upper left, in front)
+// and an ambient share.
+const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.4f, 0.6f, 0.7f));
+constexpr float kAmbient = 0.35f;
+
+}  // namespace
+
+shared_layout::TemporalParams pack_temporal_params(const ViewTargets& targets, const View& view, bool moved) {
+  const FrameSettings& settings = targets.settings();
+  const glm::dmat4 view_to_world = glm::inverse(view.view);
+  shared_layout::TemporalParams params{};
+  params.current_to_previous = glm::mat4(targets.ao_view * view_to_world);
+  params.previous_projection = glm::mat4(targets.ao_projection);
+  params.view_to_world = glm::mat4(view_to_world);
+  params.unproject = targets.ssao_params.unproject;
+  params.far_plane = static_cast<float>(view.far);
+  params.previous_far = static_cast<float>(targets.ao_far);
+  params.depth_tolerance = kHistoryDepthTolerance;
+  params.normal_cosine = kHistoryNormalCosine;
+  params.has_history = targets.have_ao ? 1 : 0;
+  params.max_frames = settings.history;
+  params.ao_shift = targets.ssao_params.ao_shift;
+  params.moved = moved ? 1 : 0;
+  params.ao_width = targets.ao_width();
+  params.ao_height = targets.ao_height();
+  params.full_width = settings.width;
+  params.full_height = settings.height;
+  return params;
+}
+
+shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets, const View& view, glm::ivec2 viewport,
+                                                     float fade) {
+  const FrameSettings& settings = targets.settings();
+  shared_layout::CompositeParams params{};
+  params.light_direction = glm::vec4(kLightDirection, 0.0f);
+  params.background = glm::vec4(settings.background, 1.0f);
+  params.unproject = targets.ssao_params.unproject;
+  params.apply_ao = settings.ao ? 1 : 0;
+  params.ao_shift = settings.ao_settings.half_resolution ? 1 : 0;
+  params.viewport_x = viewport.x;
+  params.viewport_y = viewport.y;
+  params.full_width = settings.width;
+  params.full_height = settings.height;
+  params.ao_width = targets.ao_width();
+  params.ao_height = targets.ao_height();
+  params.near_plane = static_cast<float>(view.near);
+  params.far_plane = static_cast<float>(view.far);
+  params.inverse_far = inverse_far(view);
+  params.fade = fade;
+  params.ambient = kAmbient;
+  params.ao_strength = settings.ao_strength;
+  params.plane_tolerance = targets.upsample_plane_tolerance();
+  return params;
+}
+
+shared_layout::UpsampleParams pack_upsample_params(const ViewTargets& targets) {
+  shared_layout::UpsampleParams params{};
+  params.full_width = targets.settings().width;
+  params.full_height = targets.settings().height;
+  params.ao_width = targets.ao_width();
+  params.ao_height = targets.ao_height();
+  // Depths are compared as depth / far: the same 1/far the present pass scaled them with.
+  params.inverse_far = targets.last_inverse_far;
+  params.plane_tolerance = targets.upsample_plane_tolerance();
+  params.unproject = targets.ssao_params.unproject;
+  return params;
+}
+
+shared_layout::ModuleParams pack_module_params(const ModuleView& view) {
+  const lightfield::Module& m = view.module;
+  shared_layout::ModuleParams params{};
+  params.world_to_physical = glm::mat4(view.roi.world_to_physical());
+  params.physical_to_world = glm::mat4(view.roi.physical_to_world());
+  params.module_x = static_cast<float>(m.x);
+  params.module_z = static_cast<float>(m.z);
+  params.observer_distance = static_cast<float>(m.observer_distance);
+  params.observer_height = static_cast<float>(m.observer_height);
+  params.footprint_x0 = static_cast<float>(m.footprint0);
+  params.footprint_x1 = static_cast<float>(m.footprint1);
+  params.screen_height = static_cast<float>(m.screen_height);
+  params.physical_per_world = static_cast<float>(view.roi.scale);
+  params.z_front = static_cast<float>(m.z_front);
+  params.z_back = static_cast<float>(m.z_back);
+  params.seed_cell = static_cast<float>(view.seed_cell);
+  params.width = m.width;
+  params.height = m.height;
+  params.pixel_turns = view.pixel_turns ? 1 : 0;
+  return params;
+}
+
+}  // namespace render

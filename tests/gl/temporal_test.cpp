@@ -130,6 +130,43 @@ TEST_P(Temporal, AnUncoveredFloorShowsNoGhostOfTheBoxThatHidItLast) {
   EXPECT_EQ(h.renderer.gl_error(), "");
 }
 
+// The floor rises between two frames of a still camera: each pixel's history texel is the old floor,
+// whose normal is the new one's, so only the depth test can tell it is another surface (the box
+// above is told apart by its normals too). Every floor pixel must start anew.
+TEST_P(Temporal, ARaisedFloorStartsAnewOnDepthAlone) {
+  render::FrameSettings settings = temporal_settings(64);
+  settings.history = 16;
+  settings.reuse_static_ao = false;  // the scene changes under a still camera: the player's never do
+  const auto floor_at = [](float top) {
+    scene::Scene scene;
+    scene.name = "floor";
+    scene.materials.resize(1);
+    scene::add_instance(scene, scene::make_box({-3, top - 0.2f, -3}, {3, top, 3}, 0));
+    scene::update_bounds(scene);
+    return scene;
+  };
+  scene::Framing framing;
+  framing.elevation_deg = 30.0;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), floor_at(0.0f), settings, framing));
+  for (int frame = 0; frame < 4; ++frame) h.renderer.render(h.camera);
+  const std::vector<float> depth_before = h.renderer.read_linear_depth();
+  std::string error;
+  ASSERT_TRUE(h.renderer.upload(floor_at(0.5f), error)) << error;
+  h.renderer.render(h.camera);
+  const std::vector<float> depth_after = h.renderer.read_linear_depth();
+  const std::vector<float> frames = h.renderer.read_history_frames();
+  size_t moved = 0;
+  for (size_t i = 0; i < depth_after.size(); ++i) {
+    // 5%: beyond the history's depth tolerance (3%) by a margin.
+    if (depth_after[i] <= 0.0f || depth_before[i] <= 0.0f || depth_after[i] > depth_before[i] * 0.95f) continue;
+    ++moved;
+    EXPECT_EQ(frames[i], 1.0f) << "texel " << i << " depth " << depth_before[i] << " -> " << depth_after[i];
+  }
+  EXPECT_GT(moved, 500u) << "of " << depth_after.size();
+  EXPECT_EQ(h.renderer.gl_error(), "");
+}
+
 // A turntable: every surface that stays in view keeps its history through the reprojection, but
 // never more than TEMPORAL_MOVING_FRAMES of it while the camera moves; it converges on a still camera.
 TEST_P(Temporal, AMovingCameraKeepsAtMostTheMovingHistory) {

@@ -17,7 +17,7 @@ constexpr double kMaxFailingShare = 0.005;
 
 struct Golden {
   const char* name;
-  render::Output view;
+  render::Picture view;
 };
 
 class GoldenImage : public ::testing::TestWithParam<std::string> {};
@@ -40,7 +40,7 @@ void write_png(const std::string& path, int width, int height, const std::vector
 }
 
 TEST_P(GoldenImage, DemoMatchesTheGoldenPictures) {
-  for (const Golden golden : {Golden{"demo_color", render::Output::color}, Golden{"demo_ao", render::Output::ao}}) {
+  for (const Golden golden : {Golden{"demo_color", render::Picture::color}, Golden{"demo_ao", render::Picture::ao}}) {
     render::FrameSettings settings;
     settings.width = 128;
     settings.height = 96;

@@ -3,6 +3,7 @@
 #include "scene/load.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
 
@@ -14,7 +15,8 @@
 namespace test {
 
 struct Harness {
-  std::unique_ptr<platform::Platform> platform;
+  std::unique_ptr<gl::Session> session;  // first: everything below goes before its context
+  platform::Platform* platform = nullptr;
   gl::Caps caps;
   render::Renderer renderer;
   scene::Scene scene;
@@ -45,9 +47,10 @@ struct Harness {
     options.name = platform_name;
     options.size = {settings.width, settings.height};
     options.debug_context = true;
-    platform = gl::open_context(options, error);
-    if (!platform) return false;
-    caps = gl::query_caps();
+    session = gl::Session::open(options, error);
+    if (!session) return false;
+    platform = &session->platform();
+    caps = session->caps();
     return true;
   }
 
@@ -55,7 +58,7 @@ struct Harness {
 
   ::testing::AssertionResult render_first_frame(const render::FrameSettings& settings, const scene::Framing& framing) {
     std::string error;
-    if (!renderer.init(caps, target(), error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
+    if (!renderer.init(*session, target(), error) || !renderer.upload(scene, error) || !renderer.configure(settings, error))
       return ::testing::AssertionFailure() << error;
     camera = scene::frame(scene.bounds, framing, settings.width, settings.height);
     renderer.render(camera);

@@ -40,9 +40,8 @@ class LightField : public ::testing::TestWithParam<std::string> {
     options.size = {64, 64};
     options.debug_context = true;
     std::string error;
-    platform_ = gl::open_context(options, error);
-    ASSERT_TRUE(platform_) << error;
-    caps_ = gl::query_caps();
+    session_ = gl::Session::open(options, error);
+    ASSERT_TRUE(session_) << error;
     dir_ = std::filesystem::temp_directory_path() / ("light-field-test-" + GetParam());
     std::filesystem::create_directories(dir_);
   }
@@ -61,13 +60,12 @@ class LightField : public ::testing::TestWithParam<std::string> {
     std::string error;
     settings.check_errors = true;
     const scene::Camera camera = scene::frame(scene.bounds, {}, d.quilt.view_width, d.quilt.view_height);
-    if (!renderer.init(caps_, error) || !renderer.upload(scene, error) || !renderer.configure(d, settings, camera, error))
+    if (!renderer.init(*session_, error) || !renderer.upload(scene, error) || !renderer.configure(d, settings, camera, error))
       return ::testing::AssertionFailure() << error;
     return ::testing::AssertionSuccess();
   }
 
-  std::unique_ptr<platform::Platform> platform_;
-  gl::Caps caps_;
+  std::unique_ptr<gl::Session> session_;
   std::filesystem::path dir_;
 };
 
@@ -92,9 +90,10 @@ TEST_P(LightField, ProbeShowsTheCalibrationsViewAtEveryPanelSubpixel) {
     const lightfield::Display d = display(kQuilt, calibration(inverted, flip_x));
     render::LightFieldRenderer renderer;
     ASSERT_TRUE(start(renderer, builtin("corner"), d));
-    renderer.render(true);
+    renderer.output().set_probe(true);
+    renderer.render();
     ASSERT_EQ(renderer.gl_error(), "");
-    const std::vector<uint8_t> native = renderer.read_native();
+    const std::vector<uint8_t> native = renderer.output().read_native();
     const lightfield::Calibration& c = d.quilt.calibration;
     const lightfield::Interleave interleave = lightfield::interleave_of(c, 12);
     ASSERT_EQ(native.size(), 120u * 90u * 4u);
@@ -124,9 +123,10 @@ TEST_P(LightField, QuiltTilesHoldTheirViewsFromTheBottomLeft) {
   const lightfield::Display d = display(kQuilt, calibration(0, 0));
   render::LightFieldRenderer renderer;
   ASSERT_TRUE(start(renderer, builtin("corner"), d));
-  renderer.render(true);
-  ASSERT_EQ(renderer.output_size(), glm::ivec2(80, 45));
-  const std::vector<uint8_t> quilt = renderer.read_output();
+  renderer.output().set_probe(true);
+  renderer.render();
+  ASSERT_EQ(renderer.output().output_size(), glm::ivec2(80, 45));
+  const std::vector<uint8_t> quilt = renderer.output().read_output();
   for (int row = 0; row < 45; ++row)
     for (int x = 0; x < 80; ++x) {
       const int tile_column = x / 20, tile_row_from_bottom = (44 - row) / 15;
@@ -134,9 +134,10 @@ TEST_P(LightField, QuiltTilesHoldTheirViewsFromTheBottomLeft) {
       ASSERT_EQ(quilt[(static_cast<size_t>(row) * 80 + static_cast<size_t>(x)) * 4], view) << x << "," << row;
     }
   // The scene itself: every view shows it, and neighbouring views differ (parallax).
-  renderer.render(false);
+  renderer.output().set_probe(false);
+  renderer.render();
   ASSERT_EQ(renderer.gl_error(), "");
-  EXPECT_NE(renderer.read_view(0), renderer.read_view(11));
+  EXPECT_NE(renderer.output().read_view(0), renderer.output().read_view(11));
 }
 
 // Modules whose image the scene cannot reach are not rendered and show the background.
@@ -157,22 +158,22 @@ physical_max = [0.5, 0.1, 0.1]
   ASSERT_TRUE(start(renderer, builtin("corner"), d, settings));
   renderer.render();
   ASSERT_EQ(renderer.gl_error(), "");
-  EXPECT_GT(renderer.rendered_views(), 0);
-  EXPECT_LT(renderer.rendered_views(), 16);
-  EXPECT_FALSE(renderer.skipped(0));  // by hand, in unit.LightfieldModules.SeesExactlyTheModulesWhoseImageTheBoxReaches
-  EXPECT_TRUE(renderer.skipped(15));
-  const std::vector<uint8_t> background = renderer.read_view(15);
+  EXPECT_GT(renderer.output().rendered_views(), 0);
+  EXPECT_LT(renderer.output().rendered_views(), 16);
+  EXPECT_FALSE(renderer.output().skipped(0));  // by hand, in unit.LightfieldModules.SeesExactlyTheModulesWhoseImageTheBoxReaches
+  EXPECT_TRUE(renderer.output().skipped(15));
+  const std::vector<uint8_t> background = renderer.output().read_view(15);
   const scene::Scene scene = builtin("corner");
   int showing = 0;
   for (int k = 0; k < 16; ++k) {
-    const std::vector<uint8_t> image = renderer.read_view(k);
-    if (!renderer.skipped(k)) {
+    const std::vector<uint8_t> image = renderer.output().read_view(k);
+    if (!renderer.output().skipped(k)) {
       showing += image != background ? 1 : 0;
       continue;
     }
     EXPECT_EQ(image, background) << "module " << k;
     // Skipped for a reason: no vertex of the scene lands in the module's image.
-    const render::ModuleView& module = *renderer.view(k).module;
+    const render::ModuleView& module = *renderer.output().view(k).module;
     for (const scene::Instance& instance : scene.instances)
       for (const scene::Vertex& vertex : scene.meshes[static_cast<size_t>(instance.mesh)].vertices) {
         const glm::dvec3 world(instance.world * glm::dvec4(glm::dvec3(vertex.position), 1.0));
@@ -209,7 +210,7 @@ TEST_P(LightField, PositionsTextureMapsBackToItsOwnPixel) {
     }
     double worst = 0.0;
     long objects = 0;
-    renderer.render(false, [&](int k, const render::View& view, const render::ViewTargets& targets) {
+    renderer.output().set_after_view([&](int k, const render::View& view, const render::ViewTargets& targets) {
       const render::WorldSurface surface = render::read_module_surface(targets);
       for (int y = 0; y < surface.height; ++y)
         for (int x = 0; x < surface.width; ++x) {
@@ -224,6 +225,7 @@ TEST_P(LightField, PositionsTextureMapsBackToItsOwnPixel) {
           worst = std::max(worst, glm::length(glm::dvec2(*image) - centre));
         }
     });
+    renderer.render();
     ASSERT_EQ(renderer.gl_error(), "");
     EXPECT_GT(objects, static_cast<long>(d.modules.width) * d.modules.height * 8 / 20) << file;
     // The edge bound (0.5 px) plus float rounding of the interpolated position.
@@ -275,16 +277,17 @@ physical_max = [0.5, 0.375, 0.25]
   std::vector<float> module_depth;
   render::LightFieldRenderer lf;
   ASSERT_TRUE(start(lf, scene, d, settings));
-  lf.render(false, [&](int, const render::View&, const render::ViewTargets& targets) {
+  lf.output().set_after_view([&](int, const render::View&, const render::ViewTargets& targets) {
     module_ao = render::read_ao(targets.ao_raw, 128, 96);
     module_depth = render::read_linear_depth(targets);
   });
+  lf.render();
   ASSERT_EQ(lf.gl_error(), "");
 
   render::Renderer renderer;
   std::string error;
   settings.check_errors = true;
-  ASSERT_TRUE(renderer.init(caps_, {platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()}, error) &&
+  ASSERT_TRUE(renderer.init(*session_, {session_->platform().framebuffer(), 0, 0, session_->platform().srgb_framebuffer()}, error) &&
               renderer.upload(scene, error) && renderer.configure(settings, error))
       << error;
   render::View camera;
@@ -344,10 +347,10 @@ resolution = "64x36"
   settings.ao_settings.estimator = ssao::Estimator::hemisphere;
   ASSERT_TRUE(start(renderer, builtin("demo"), d, settings));
   renderer.render();
-  const render::PresentTarget surface{platform_->framebuffer(), 0, 0, platform_->srgb_framebuffer()};
-  renderer.output().present(renderer.programs(), surface, 64, 64);
+  const render::PresentTarget surface{session_->platform().framebuffer(), 0, 0, session_->platform().srgb_framebuffer()};
+  renderer.present(surface, 64, 64);
   ASSERT_EQ(renderer.gl_error(), "");
-  const std::vector<uint8_t> output = renderer.read_output(), shown = render::read_presented(surface, 64, 64);
+  const std::vector<uint8_t> output = renderer.output().read_output(), shown = render::read_presented(surface, 64, 64);
   for (int row = 0; row < 64; ++row)
     for (int x = 0; x < 64; ++x) {
       const size_t at = (static_cast<size_t>(row) * 64 + static_cast<size_t>(x)) * 4;

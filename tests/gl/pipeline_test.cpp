@@ -512,7 +512,7 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
   for (bool prepass : {true, false})
     for (bool ao : {true, false})
       for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral, ssao::Blur::denoise})
-        for (render::Output view : {render::Output::color, render::Output::ao, render::Output::normal, render::Output::depth}) {
+        for (render::Picture view : {render::Picture::color, render::Picture::ao, render::Picture::normal, render::Picture::depth}) {
           render::FrameSettings settings = small_settings();
           settings.width = 48;
           settings.height = 32;

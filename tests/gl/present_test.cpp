@@ -57,14 +57,15 @@ TEST_P(Surface, IsTheSizeAskedForAndReportsIt) {
     options.name = GetParam();
     options.size = size;
     std::string error;
-    const auto surface = gl::open_context(options, error);
-    ASSERT_NE(surface, nullptr) << error;
+    const auto session = gl::Session::open(options, error);
+    ASSERT_NE(session, nullptr) << error;
+    const platform::Platform& surface = session->platform();
     GLint viewport[4] = {};
     gl::api.GetIntegerv(GL_VIEWPORT, viewport);
     EXPECT_EQ(viewport[2], size.width) << GetParam();
     EXPECT_EQ(viewport[3], size.height) << GetParam();
-    EXPECT_EQ(surface->size().width, size.width);
-    EXPECT_EQ(surface->size().height, size.height);
+    EXPECT_EQ(surface.size().width, size.width);
+    EXPECT_EQ(surface.size().height, size.height);
   }
 }
 

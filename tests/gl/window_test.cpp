@@ -234,9 +234,9 @@ TEST(NoDisplay, TheWindowPlatformSaysWhyInOneLine) {
   options.name = "window";
   options.size = {64, 64};
   std::string error;
-  const auto platform = gl::open_context(options, error);
+  const auto session = gl::Session::open(options, error);
   for (const auto& [name, value] : saved) setenv(name, value.c_str(), 1);
-  EXPECT_EQ(platform, nullptr);
+  EXPECT_EQ(session, nullptr);
   EXPECT_EQ(error,
             "window: no display (DISPLAY is not set; the window platform needs X11 or Wayland, use --platform egl for "
             "headless)");

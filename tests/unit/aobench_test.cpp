@@ -191,7 +191,7 @@ TEST(SettingsCodec, EveryKeyRoundTripsItsDefault) {
   std::string error;
   ASSERT_TRUE(render::apply_settings(settings, "estimator=sphere,view=ao,radius=0.25,ao=off", error)) << error;
   EXPECT_EQ(settings.ao_settings.estimator, ssao::Estimator::sphere);
-  EXPECT_EQ(settings.output, render::Output::ao);
+  EXPECT_EQ(settings.output, render::Picture::ao);
   EXPECT_FLOAT_EQ(settings.radius, 0.25f);
   EXPECT_FALSE(settings.ao);
   EXPECT_EQ(render::describe(settings, defaults), "ao=off,estimator=sphere,radius=0.25,view=ao");

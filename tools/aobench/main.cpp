@@ -8,6 +8,7 @@
 #include "chart.h"
 #include "configs.h"
 #include "gl/caps.h"
+#include "gl/session.h"
 #include "gl/gl_api.h"
 #include "render/renderer.h"
 #include "render/settings.h"
@@ -177,14 +178,15 @@ int main(int argc, char** argv) {
   platform::Options platform_options;
   platform_options.name = options.platform;
   platform_options.size = {width, height};
-  auto platform = gl::open_context(platform_options, error);
-  if (!platform) {
+  const auto session = gl::Session::open(platform_options, error);
+  if (!session) {
     std::cerr << "error: " << error << "\n";
     return 1;
   }
-  const gl::Caps caps = gl::query_caps();
+  const platform::Platform& platform = session->platform();
+  const gl::Caps& caps = session->caps();
   std::cout << "aobench: " << configs.size() << " configurations x " << options.scenes.size() << " scenes x " << options.views
-            << " views at " << width << "x" << height << " on " << platform->name() << " (" << caps.renderer << ")"
+            << " views at " << width << "x" << height << " on " << platform.name() << " (" << caps.renderer << ")"
             << (caps.timer_query ? ", GPU timer queries" : ", CPU clock around glFinish") << "\n";
 
   fs::create_directories(fs::path(options.csv).parent_path().empty() ? "." : fs::path(options.csv).parent_path());
@@ -214,8 +216,8 @@ int main(int argc, char** argv) {
     }
     render::Renderer renderer;
     render::FrameSettings base = configs.front().settings;
-    const render::PresentTarget target{platform->framebuffer(), 0, 0, platform->srgb_framebuffer()};
-    if (!renderer.init(caps, target, error) || !renderer.upload(scene, error) || !renderer.configure(base, error)) {
+    const render::PresentTarget target{platform.framebuffer(), 0, 0, platform.srgb_framebuffer()};
+    if (!renderer.init(*session, target, error) || !renderer.upload(scene, error) || !renderer.configure(base, error)) {
       std::cerr << "error: " << scene_spec << ": " << error << "\n";
       return 1;
     }

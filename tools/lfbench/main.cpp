@@ -6,6 +6,7 @@
 // 45-view quilt. (4) View consistency: the spread of AO for one world point across the modules that
 // see it, against the spread between neighbouring pixels of one module (its noise).
 #include "gl/caps.h"
+#include "gl/session.h"
 #include "gl/gl_api.h"
 #include "lightfield/display_file.h"
 #include "platform/platform.h"
@@ -112,20 +113,19 @@ double median_frame_ms(render::LightFieldRenderer& renderer, int frames) {
   return ms[ms.size() / 2];
 }
 
-bool time_display(const gl::Caps& caps, const scene::Scene& scene, const lightfield::Display& display, double& with_ao,
+bool time_display(gl::Session& session, const scene::Scene& scene, const lightfield::Display& display, double& with_ao,
                   double& without_ao, int& rendered, int frames) {
   render::LightFieldRenderer renderer;
   render::FrameSettings settings;
-  if (display.type == lightfield::DisplayType::modules) settings.ao_settings.estimator = ssao::Estimator::hemisphere;
   settings.reuse_static_ao = false;
   std::string error;
   const scene::Camera camera = scene::frame(scene.bounds, {}, display.quilt.view_width, display.quilt.view_height);
-  if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, camera, error)) {
+  if (!renderer.init(session, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, camera, error)) {
     std::cerr << "lfbench: " << error << "\n";
     return false;
   }
   with_ao = median_frame_ms(renderer, frames);
-  rendered = renderer.rendered_views();
+  rendered = renderer.output().rendered_views();
   settings.ao = false;
   if (!renderer.configure(display, settings, camera, error)) {
     std::cerr << "lfbench: " << error << "\n";
@@ -158,7 +158,7 @@ struct Spread {
   double value() const { return count > 0 ? sum / count : 0.0; }
 };
 
-void measure_consistency(const gl::Caps& caps, const scene::Scene& scene, const lightfield::Display& display, bool pixel_turns,
+void measure_consistency(gl::Session& session, const scene::Scene& scene, const lightfield::Display& display, bool pixel_turns,
                          ssao::Blur blur) {
   render::LightFieldRenderer renderer;
   render::FrameSettings settings;
@@ -166,22 +166,23 @@ void measure_consistency(const gl::Caps& caps, const scene::Scene& scene, const 
   settings.ao_settings.half_resolution = false;
   settings.blur.mode = blur;
   std::string error;
-  if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, {}, error)) {
+  if (!renderer.init(session, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, {}, error)) {
     std::cerr << "lfbench: " << error << "\n";
     return;
   }
-  renderer.set_pixel_turns(pixel_turns);
-  std::vector<ModuleCapture> captures(static_cast<size_t>(renderer.views()));
-  renderer.render(false, [&](int k, const render::View&, const render::ViewTargets& targets) {
+  renderer.output().set_pixel_turns(pixel_turns);
+  std::vector<ModuleCapture> captures(static_cast<size_t>(renderer.output().views()));
+  renderer.output().set_after_view([&](int k, const render::View&, const render::ViewTargets& targets) {
     ModuleCapture& c = captures[static_cast<size_t>(k)];
     c.surface = render::read_module_surface(targets);
     for (const glm::vec2& ao : render::read_ao(targets.ao_raw, targets.ao_width(), targets.ao_height())) c.raw.push_back(ao.x);
     for (const glm::vec2& ao : render::read_ao_full(renderer.programs(), targets)) c.shaded.push_back(ao.x);
   });
+  renderer.render();
   const int w = display.modules.width, h = display.modules.height;
-  const double pixel_world = (display.modules.footprint.y - display.modules.footprint.x) / w / renderer.view(0).module->roi.scale;
+  const double pixel_world = (display.modules.footprint.y - display.modules.footprint.x) / w / renderer.output().view(0).module->roi.scale;
   Spread across_raw, across_shaded, within_raw, within_shaded;  // raw: before the blur; shaded: after
-  for (int k = 0; k < renderer.views(); ++k) {
+  for (int k = 0; k < renderer.output().views(); ++k) {
     const ModuleCapture& c = captures[static_cast<size_t>(k)];
     if (c.surface.position.empty()) continue;
     for (int y = 1; y + 1 < h; y += 2)
@@ -204,9 +205,9 @@ void measure_consistency(const gl::Caps& caps, const scene::Scene& scene, const 
         // Across modules: the pixel of each other module that shows this point, where it is this point.
         const glm::dvec3 world(c.surface.position[i * 4], c.surface.position[i * 4 + 1], c.surface.position[i * 4 + 2]);
         std::vector<float> same_raw{c.raw[i]}, same_shaded{c.shaded[i]};
-        for (int j = 0; j < renderer.views(); ++j) {
+        for (int j = 0; j < renderer.output().views(); ++j) {
           if (j == k || captures[static_cast<size_t>(j)].surface.position.empty()) continue;
-          const render::ModuleView& mv = *renderer.view(j).module;
+          const render::ModuleView& mv = *renderer.output().view(j).module;
           const auto image = lightfield::physical_to_image(mv.module, mv.roi.to_physical(world));
           if (!image || image->x < 0 || image->y < 0 || image->x >= w || image->y >= h) continue;
           const int u = static_cast<int>(image->x), v_bottom = h - 1 - static_cast<int>(image->y);
@@ -241,13 +242,13 @@ int run(const Options& options) {
   platform_options.name = options.platform;
   platform_options.size = {64, 64};
   std::string error;
-  auto platform = gl::open_context(platform_options, error);
-  if (!platform) {
+  const auto session = gl::Session::open(platform_options, error);
+  if (!session) {
     std::cerr << "lfbench: " << error << "\n";
     return 1;
   }
-  const gl::Caps caps = gl::query_caps();
-  std::cout << "# Frame cost on " << platform->name() << " (" << caps.renderer << "), CPU clock around glFinish, median of "
+  const gl::Caps& caps = session->caps();
+  std::cout << "# Frame cost on " << session->platform().name() << " (" << caps.renderer << "), CPU clock around glFinish, median of "
             << options.frames << " frames after one warm-up\n";
   lightfield::Display c80;
   if (!lightfield::load_display(options.board_dir + "/holovizio-c80.toml", c80, error)) {
@@ -269,7 +270,7 @@ int run(const Options& options) {
       for (int k = 0; k < count; ++k) display.modules.module_x.push_back(count == 1 ? 0.0 : -1.0 + 2.0 * k / (count - 1));
       double with_ao = 0.0, without_ao = 0.0;
       int rendered = 0;
-      if (!time_display(caps, scene, display, with_ao, without_ao, rendered, options.frames)) return 1;
+      if (!time_display(*session, scene, display, with_ao, without_ao, rendered, options.frames)) return 1;
       if (count == options.module_counts.front()) one = with_ao / count;
       std::cout << std::fixed << std::setprecision(2) << std::setw(8) << count << std::setw(10) << rendered << std::setw(12)
                 << with_ao << std::setw(12) << without_ao << std::setw(10) << with_ao / one << std::setw(16)
@@ -282,7 +283,7 @@ int run(const Options& options) {
     }
     double with_ao = 0.0, without_ao = 0.0;
     int rendered = 0;
-    if (!time_display(caps, scene, quilt, with_ao, without_ao, rendered, options.frames)) return 1;
+    if (!time_display(*session, scene, quilt, with_ao, without_ao, rendered, options.frames)) return 1;
     lightfield::Display desk;
     if (!lightfield::load_display(options.board_dir + "/desk-8.toml", desk, error)) {
       std::cerr << "lfbench: " << error << "\n";
@@ -294,7 +295,7 @@ int run(const Options& options) {
     std::cout << std::left << std::setw(26) << "  sample turns" << std::setw(10) << "blur" << std::right << std::setw(12) << "across raw"
               << std::setw(12) << "across" << std::setw(12) << "within raw" << std::setw(12) << "within" << std::setw(9) << "points" << "\n";
     for (const bool pixel_turns : {false, true})
-      for (const ssao::Blur blur : {ssao::Blur::off, ssao::Blur::bilateral}) measure_consistency(caps, scene, desk, pixel_turns, blur);
+      for (const ssao::Blur blur : {ssao::Blur::off, ssao::Blur::bilateral}) measure_consistency(*session, scene, desk, pixel_turns, blur);
     std::cout << "quilt " << quilt.quilt.columns << "x" << quilt.quilt.rows << " (" << rendered << " views of "
               << quilt.quilt.view_width << "x" << quilt.quilt.view_height << ") + interleave to "
               << quilt.quilt.calibration.screen_width << "x" << quilt.quilt.calibration.screen_height << ": " << with_ao

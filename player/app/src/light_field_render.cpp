@@ -2,6 +2,7 @@
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
 #include "dump.h"
 #include "image_io.h"
 #include "platform/platform.h"
@@ -34,7 +35,7 @@ nlohmann::json vec3_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 // position and normal and the depth of the visible surface, and what the view was.
 bool dump_view(const std::string& dir, int k, const render::View& view, const render::LightFieldRenderer& renderer,
                std::string& error) {
-  const render::ViewTargets& targets = renderer.targets();
+  const render::ViewTargets& targets = renderer.output().targets();
   const std::string base = dir + "/" + (view.module ? "module-" : "view-") + std::to_string(k);
   if (!make_folder(base, error)) return false;
   const int w = targets.settings().width, h = targets.settings().height;
@@ -90,27 +91,23 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
         << " views; the probe draws view k as the 8-bit grey k, so at most 256\n";
     return 2;
   }
-  render::FrameSettings settings = options.frame;
-  if (!quilt && settings.ao_settings.estimator == ssao::Estimator::horizon) {
-    if (options.estimator_given) {
-      err << "error: --estimator: horizon searches screen-space slices and has no light field form; " << options.display
-          << " describes optical modules, which take sphere or hemisphere\n";
-      return 2;
-    }
-    settings.ao_settings.estimator = ssao::Estimator::hemisphere;
-    out << "estimator: hemisphere (the default, horizon, has no form for optical modules; Algorithm 2 runs hemisphere)\n";
+  // The default falls back to what modules can run (the output says so); asking for horizon by name
+  // is a mistake to report.
+  if (!quilt && options.frame.ao_settings.estimator == ssao::Estimator::horizon && options.estimator_given) {
+    err << "error: --estimator: horizon searches screen-space slices and has no light field form; " << options.display
+        << " describes optical modules, which take sphere or hemisphere\n";
+    return 2;
   }
 
   platform::Options platform_options;
   platform_options.name = options.platform;
   platform_options.size = {64, 64};  // every view renders into its own framebuffer
-  auto platform = gl::open_context(platform_options, error);
-  if (!platform) {
+  const auto session = gl::Session::open(platform_options, error);
+  if (!session) {
     err << "error: " << error << "\n";
     return 1;
   }
-  const gl::Caps caps = gl::query_caps();
-  gl::install_debug_log(caps, false);
+  const gl::Caps& caps = session->caps();
   scene::Scene scene;
   if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {
     err << "error: " << error << "\n";
@@ -118,10 +115,14 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   }
   render::LightFieldRenderer renderer;
   const scene::Camera camera = scene::frame(scene.bounds, options.framing, display.quilt.view_width, display.quilt.view_height);
-  if (!renderer.init(caps, error) || !renderer.upload(scene, error) || !renderer.configure(display, settings, camera, error)) {
+  if (!renderer.init(*session, error) || !renderer.upload(scene, error) ||
+      !renderer.configure(display, options.frame, camera, error)) {
     err << "error: " << error << "\n";
     return 1;
   }
+  render::LightFieldOutput& output = renderer.output();
+  if (!output.adjustment().empty()) out << output.adjustment() << "\n";
+  output.set_probe(options.view_probe);
 
   const int frames = std::max(1, options.frames);
   std::vector<double> frame_ms;
@@ -129,14 +130,14 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   for (int frame = 0; frame < frames; ++frame) {
     const bool last = frame + 1 == frames;
     const auto start = std::chrono::steady_clock::now();
-    render::AfterView after;
-    if (last && !options.dump_dir.empty() && !options.view_probe)
-      after = [&](int k, const render::View& view, const render::ViewTargets&) {
+    const bool dumping = last && !options.dump_dir.empty() && !options.view_probe;
+    if (dumping)
+      output.set_after_view([&](int k, const render::View& view, const render::ViewTargets&) {
         if (dump_error.empty()) dump_view(options.dump_dir, k, view, renderer, dump_error);
-      };
-    renderer.render(options.view_probe, after);
+      });
+    renderer.render();
     gl::api.Finish();
-    if (!after) frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    if (!dumping) frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   if (!renderer.gl_error().empty()) {
     err << "error: " << renderer.gl_error() << "\n";
@@ -146,8 +147,8 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
     err << "error: " << dump_error << "\n";
     return 1;
   }
-  const glm::ivec2 output = renderer.output_size(), view_size = renderer.view_size();
-  if (!write_png(options.output, output.x, output.y, renderer.read_output(), error)) {
+  const glm::ivec2 output_size = output.output_size(), view_size = output.view_size();
+  if (!write_png(options.output, output_size.x, output_size.y, output.read_output(), error)) {
     err << "error: " << error << "\n";
     return 1;
   }
@@ -156,46 +157,46 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
       err << "error: " << error << "\n";
       return 1;
     }
-    for (int k = 0; k < renderer.views(); ++k) {
+    for (int k = 0; k < output.views(); ++k) {
       const std::string path = options.modules_dir + "/" + (quilt ? "view-" : "module-") + std::to_string(k) + ".png";
-      if (!write_png(path, view_size.x, view_size.y, renderer.read_view(k), error)) {
+      if (!write_png(path, view_size.x, view_size.y, output.read_view(k), error)) {
         err << "error: " << error << "\n";
         return 1;
       }
     }
   }
   if (!options.native_output.empty()) {
-    const glm::ivec2 native = renderer.native_size();
-    if (!write_png(options.native_output, native.x, native.y, renderer.read_native(), error)) {
+    const glm::ivec2 native = output.native_size();
+    if (!write_png(options.native_output, native.x, native.y, output.read_native(), error)) {
       err << "error: " << error << "\n";
       return 1;
     }
   }
 
   const std::string what = quilt ? "views" : "modules";
-  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.display << ": " << renderer.views() << " "
-      << what << " of " << view_size.x << "x" << view_size.y << ", " << platform->name() << " (" << caps.renderer << ")\n";
+  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.display << ": " << output.views() << " "
+      << what << " of " << view_size.x << "x" << view_size.y << ", " << session->platform().name() << " (" << caps.renderer << ")\n";
   const render::SubdivisionReport& split = renderer.subdivision();
   if (split.triangles_after > split.triangles_before || split.capped)
     out << "long edges split for the modules' transform: " << split.triangles_before << " -> " << split.triangles_after
         << " triangles, worst edge " << std::fixed << std::setprecision(2) << split.worst_before_px << " -> "
         << split.worst_after_px << " px from where the modules show it"
         << (split.capped ? " (stopped at the triangle budget: above the 0.5 px bound)" : "") << "\n";
-  out << renderer.rendered_views() << " of " << renderer.views() << " " << what << " rendered";
-  if (renderer.rendered_views() < renderer.views())
-    out << " (" << renderer.views() - renderer.rendered_views() << " see nothing of the scene and show the background)";
+  out << output.rendered_views() << " of " << output.views() << " " << what << " rendered";
+  if (output.rendered_views() < output.views())
+    out << " (" << output.views() - output.rendered_views() << " see nothing of the scene and show the background)";
   out << (options.view_probe ? "; view probe: view k drawn as grey level k" : "") << "\n";
   if (!frame_ms.empty()) {
     std::sort(frame_ms.begin(), frame_ms.end());
     const double median = frame_ms[frame_ms.size() / 2];
     out << "frame (CPU clock around glFinish), median of " << frame_ms.size() << ": " << std::fixed << std::setprecision(3)
-        << median << " ms, " << median / std::max(1, renderer.rendered_views()) << " ms per rendered view\n";
+        << median << " ms, " << median / std::max(1, output.rendered_views()) << " ms per rendered view\n";
   }
-  out << "wrote " << options.output << " (" << (quilt ? "quilt" : "montage") << ", " << output.x << "x" << output.y << ")\n";
-  if (!options.modules_dir.empty()) out << "wrote " << renderer.views() << " images to " << options.modules_dir << "\n";
+  out << "wrote " << options.output << " (" << (quilt ? "quilt" : "montage") << ", " << output_size.x << "x" << output_size.y << ")\n";
+  if (!options.modules_dir.empty()) out << "wrote " << output.views() << " images to " << options.modules_dir << "\n";
   if (!options.native_output.empty())
-    out << "wrote " << options.native_output << " (native panel image, " << renderer.native_size().x << "x"
-        << renderer.native_size().y << ")\n";
+    out << "wrote " << options.native_output << " (native panel image, " << output.native_size().x << "x"
+        << output.native_size().y << ")\n";
   if (!options.dump_dir.empty() && !options.view_probe)
     out << "dumped each view's AO, position, normal, depth and view.json to " << options.dump_dir << "\n";
   return 0;

@@ -8,6 +8,7 @@
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
 #include "hal/board.h"
 #include "hal/devices.h"
 #include "loader.h"
@@ -154,26 +155,26 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   std::shared_ptr<const playback::Playlist> playlist;
   if (!load_what_to_play(options, parse_options, playlist_path, playlist, err)) return 1;
 
-  std::unique_ptr<platform::Platform> platform = gl::open_context(platform_options(options, platform_name), error);
-  if (!platform) {
+  const std::unique_ptr<gl::Session> session = gl::Session::open(platform_options(options, platform_name), error);
+  if (!session) {
     err << "error: " << error << "\n";
     return 2;
   }
-  const gl::Caps caps = gl::query_caps();
-  gl::install_debug_log(caps, false);
+  platform::Platform& platform = session->platform();
+  const gl::Caps& caps = session->caps();
   // Textures beyond what this GPU can hold are drawn white with a warning, not failed at upload.
   loader.set_scene_options(load_options_for(caps));
-  FrameDrawer drawer(*platform, caps, options.settings);
+  FrameDrawer drawer(*session, options.settings);
   if (!drawer.open(options.rotation >= 0 ? options.rotation : board.display_rotation, error)) {
     err << "error: " << error << "\n";
     return 2;
   }
   drawer.show_overlay(options.overlay == "on" || (options.overlay == "auto" && capabilities.desktop_window),
                       devices.status->led_count());
-  out << "platform: " << platform->name() << " (" << platform->description() << "; " << caps.renderer << ")"
+  out << "platform: " << platform.name() << " (" << platform.description() << "; " << caps.renderer << ")"
       << (platform_why.empty() ? "" : ", chosen because " + platform_why) << "\n";
-  if (!platform->presenting()) {
-    out << "display: " << platform->not_presenting_reason() << "; waiting for one\n";
+  if (!platform.presenting()) {
+    out << "display: " << platform.not_presenting_reason() << "; waiting for one\n";
     kiosk.display_lost();
   }
   out << "playing " << (playlist_path.empty() ? std::string("the command line's scenes") : playlist_path) << ": "
@@ -186,7 +187,7 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   SceneCache scenes(loader, caps, status, err);
   SelfCheckSession check(devices.camera.get(), devices.mock_camera, std::move(camera_script), board.self_check_interval_s,
                          clock.devices(), status, kiosk);
-  PlayLoop loop({options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, *platform, drawer, scenes, check},
+  PlayLoop loop({options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes, check},
                 std::move(playlist_path), std::move(playlist), resume.frames);
   const int code = loop.run();
   next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames()};

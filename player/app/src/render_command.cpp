@@ -2,6 +2,7 @@
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
 #include "dump.h"
 #include "image_io.h"
 #include "light_field_render.h"
@@ -118,13 +119,13 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   platform::Options platform_options;
   platform_options.name = options.platform;
   platform_options.size = {options.frame.width, options.frame.height};
-  auto platform = gl::open_context(platform_options, error);
-  if (!platform) {
+  const auto session = gl::Session::open(platform_options, error);
+  if (!session) {
     err << "error: " << error << "\n";
     return 1;
   }
-  const gl::Caps caps = gl::query_caps();
-  gl::install_debug_log(caps, false);
+  const platform::Platform& platform = session->platform();
+  const gl::Caps& caps = session->caps();
 
   // Loaded with the context's texture limit known, so a texture this GPU cannot hold is drawn white.
   const auto load_start = std::chrono::steady_clock::now();
@@ -135,8 +136,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   }
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
   render::Renderer renderer;
-  const render::PresentTarget target{platform->framebuffer(), 0, 0, platform->srgb_framebuffer()};
-  if (!renderer.init(caps, target, error) || !renderer.upload(scene, error) || !renderer.configure(options.frame, error)) {
+  const render::PresentTarget target{platform.framebuffer(), 0, 0, platform.srgb_framebuffer()};
+  if (!renderer.init(*session, target, error) || !renderer.upload(scene, error) || !renderer.configure(options.frame, error)) {
     err << "error: " << error << "\n";
     return 1;
   }
@@ -171,7 +172,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     }
   }
   if (!options.dump_dir.empty() &&
-      !write_dump(options.dump_dir, renderer, camera, options, std::string(platform->name()) + ": " + caps.renderer, error)) {
+      !write_dump(options.dump_dir, renderer, camera, options, std::string(platform.name()) + ": " + caps.renderer, error)) {
     err << "error: " << error << "\n";
     return 1;
   }
@@ -180,7 +181,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   // frame it is left out of the median.
   const size_t first = times.size() > 1 ? 1 : 0;
   out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.frame.width << "x"
-      << options.frame.height << ", " << platform->name() << " (" << caps.renderer << "), loaded in " << std::fixed
+      << options.frame.height << ", " << platform.name() << " (" << caps.renderer << "), loaded in " << std::fixed
       << std::setprecision(1) << load_ms << " ms\n";
   out << (times.front().gpu_timed ? "GPU time per pass" : "time per pass (CPU clock around glFinish; no timer queries)")
       << ", median of " << times.size() - first << " frame(s):\n";
@@ -220,20 +221,21 @@ int run_info(const std::string& platform_name, std::ostream& out, std::ostream& 
   platform::Options platform_options;
   platform_options.name = platform_name;
   platform_options.size = {64, 64};
-  auto platform = gl::open_context(platform_options, error);
-  if (!platform) {
+  const auto session = gl::Session::open(platform_options, error);
+  if (!session) {
     err << "error: " << error << "\n";
     return 1;
   }
-  const gl::Caps caps = gl::query_caps();
-  out << "platform:        " << platform->name() << " (" << platform->description() << ")\n";
+  const platform::Platform& platform = session->platform();
+  const gl::Caps& caps = session->caps();
+  out << "platform:        " << platform.name() << " (" << platform.description() << ")\n";
   out << "GL renderer:     " << caps.renderer << "\n";
   out << "GL version:      " << caps.version << "\n";
   out << "GLSL version:    " << caps.shading_language << "\n";
   out << "compute:         " << caps.max_compute_work_group_invocations << " invocations per group, textures up to "
       << caps.max_texture_size << "\n";
   out << "extensions used:\n";
-  for (const std::string& extension : platform->extensions_used()) out << "  " << extension << "  yes\n";
+  for (const std::string& extension : platform.extensions_used()) out << "  " << extension << "  yes\n";
   for (const auto& [extension, present] : caps.extensions_used())
     out << "  " << extension << "  " << (present ? "yes" : "no") << "\n";
   out << "per-pass timing: " << (caps.timer_query ? "GPU timer queries" : "CPU clock around glFinish") << "\n";

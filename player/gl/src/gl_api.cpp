@@ -28,10 +28,4 @@ bool load(const platform::Platform& platform, std::string& error) {
   return ok;
 }
 
-std::unique_ptr<platform::Platform> open_context(const platform::Options& options, std::string& error) {
-  auto platform = platform::create(options, error);
-  if (platform && !load(*platform, error)) return nullptr;
-  return platform;
-}
-
 }  // namespace gl

@@ -142,8 +142,8 @@ const Row kRows[] = {
      [](FrameSettings& s, std::string_view v) { return parse_enum<Prepass>(kPrepassNames, v, s.prepass); },
      [](const FrameSettings& s) { return std::string(name(s.prepass)); }},
     {{"view", "What to show: the shaded image or a debug output", ""},
-     [] { return names::choices<Output>(kOutputNames); },
-     [](FrameSettings& s, std::string_view v) { return parse_enum<Output>(kOutputNames, v, s.output); },
+     [] { return names::choices<Picture>(kPictureNames); },
+     [](FrameSettings& s, std::string_view v) { return parse_enum<Picture>(kPictureNames, v, s.output); },
      [](const FrameSettings& s) { return std::string(name(s.output)); }},
 };
 
@@ -174,7 +174,7 @@ std::string known_keys() {
 
 }  // namespace
 
-std::string_view name(Output output) { return names::name_of<Output>(kOutputNames, output); }
+std::string_view name(Picture output) { return names::name_of<Picture>(kPictureNames, output); }
 std::string_view name(Prepass prepass) { return names::name_of<Prepass>(kPrepassNames, prepass); }
 
 std::span<const SettingKey> setting_keys() { return {key_table(), std::size(kRows)}; }

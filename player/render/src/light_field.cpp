@@ -37,12 +37,20 @@ scene::Scene prepare_for_display(const scene::Scene& scene, const lightfield::Di
   return subdivide_for_modules(scene, m, *roi, LightFieldRenderer::kMaxEdgeErrorPx, report);
 }
 
-bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const lightfield::Display& display,
-                                 const FrameSettings& frame_settings, const scene::Bounds& bounds, double scene_radius,
-                                 ViewTargets& targets, std::string& error) {
-  display_ = display;
+bool LightFieldOutput::configure(const FrameSettings& frame_settings, const SceneGpu& scene, bool, std::string& error) {
+  // The views render into the output texture, which holds sRGB-encoded bytes; present() decodes them
+  // for a target that encodes itself.
+  const lightfield::Display& display = display_;
+  const scene::Bounds& bounds = scene.bounds();
+  const gl::Caps& caps = caps_;
   FrameSettings settings = frame_settings;
   const bool modules = display.type == lightfield::DisplayType::modules;
+  adjustment_.clear();
+  if (modules && settings.ao_settings.estimator == ssao::Estimator::horizon) {
+    settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+    adjustment_ = "estimator: hemisphere (horizon searches screen-space slices and has no form for optical modules; "
+                  "Algorithm 2 runs hemisphere)";
+  }
   settings.width = modules ? display.modules.width : display.quilt.view_width;
   settings.height = modules ? display.modules.height : display.quilt.view_height;
   // Views share one set of targets, so the prepass's automatic choice (measured per view over frames)
@@ -51,8 +59,8 @@ bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const
   // For the same reason there is no history to accumulate from: the previous frame of these targets
   // is another view's.
   settings.temporal = false;
-  if (!targets.configure(programs, caps, settings, scene_radius, false, error, modules)) return false;
-  if (!programs.build_interleave(error)) return false;  // also the copy present() uses
+  if (!targets_.configure(programs_, caps, settings, scene.radius(), false, error, modules)) return false;
+  if (!programs_.build_interleave(error)) return false;  // also the copy present() uses
   background_ = settings.background;
   view_size_ = {settings.width, settings.height};
 
@@ -117,10 +125,6 @@ bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const
       error = "the native panel framebuffer is incomplete";
       return false;
     }
-    interleave_ = &programs.interleave;
-    interleave_constants_ = programs.interleave_constants;
-    interleave_panel_ = programs.interleave_panel;
-    interleave_layout_ = programs.interleave_layout;
   }
   const GLenum status = gl::api.GetError();
   if (status != GL_NO_ERROR) {
@@ -130,7 +134,7 @@ bool LightFieldOutput::configure(Programs& programs, const gl::Caps& caps, const
   return true;
 }
 
-void LightFieldOutput::set_camera(const scene::Camera& camera) {
+void LightFieldOutput::aim(const scene::Camera& camera) {
   if (display_.type != lightfield::DisplayType::quilt) return;
   const double aspect = static_cast<double>(view_size_.x) / view_size_.y;
   // The outer views stand up to 1 / cos(cone / 2) farther from the scene than the centre one.
@@ -164,8 +168,8 @@ glm::ivec2 LightFieldOutput::native_size() const {
 
 int LightFieldOutput::rendered_views() const { return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false)); }
 
-void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTargets& targets, float fade, bool probe,
-                              const AfterView& after_view, std::string* gl_error) {
+void LightFieldOutput::render(const OutputFrame& frame) {
+  const float fade = frame.fade;
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, output_fbo_.id());
   gl::api.Viewport(0, 0, output_size_.x, output_size_.y);
   const float clear[4] = {srgb_encode(background_.r * fade), srgb_encode(background_.g * fade), srgb_encode(background_.b * fade),
@@ -174,7 +178,7 @@ void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTar
   for (int k = 0; k < views(); ++k) {
     if (skipped_[static_cast<size_t>(k)]) continue;
     const glm::ivec2 origin = tile_origin(k);
-    if (probe) {
+    if (probe_) {
       gl::api.BindFramebuffer(GL_FRAMEBUFFER, output_fbo_.id());
       gl::api.Enable(GL_SCISSOR_TEST);
       gl::api.Scissor(origin.x, origin.y, view_size_.x, view_size_.y);
@@ -184,9 +188,9 @@ void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTar
       gl::api.Disable(GL_SCISSOR_TEST);
       continue;
     }
-    const PassContext context{programs, scene, targets, views_[static_cast<size_t>(k)], nullptr, gl_error};
+    const PassContext context{programs_, frame.scene, targets_, views_[static_cast<size_t>(k)], nullptr, frame.gl_error};
     render_view(context, PresentTarget{output_fbo_.id(), origin.x, origin.y, false}, fade);
-    if (after_view) after_view(k, views_[static_cast<size_t>(k)], targets);
+    if (after_view_) after_view_(k, views_[static_cast<size_t>(k)], targets_);
   }
   if (quilt()) {
     const lightfield::Calibration& c = display_.quilt.calibration;
@@ -194,20 +198,21 @@ void LightFieldOutput::render(Programs& programs, const SceneGpu& scene, ViewTar
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, native_fbo_.id());
     gl::api.Viewport(0, 0, c.screen_width, c.screen_height);
     gl::api.Disable(GL_DEPTH_TEST);
-    gl::api.UseProgram(interleave_->id());
-    gl::api.Uniform4f(interleave_constants_, static_cast<float>(interleave.pitch), static_cast<float>(interleave.tilt),
+    gl::api.UseProgram(programs_.interleave->id());
+    gl::api.Uniform4f(programs_.interleave_constants, static_cast<float>(interleave.pitch), static_cast<float>(interleave.tilt),
                       static_cast<float>(interleave.subpixel), static_cast<float>(interleave.center));
-    gl::api.Uniform4i(interleave_panel_, c.screen_width, c.screen_height, c.inverted_views ? 1 : 0, c.flip_y ? 1 : 0);
-    gl::api.Uniform4i(interleave_layout_, grid_.x, grid_.y, view_size_.x, view_size_.y);
+    gl::api.Uniform4i(programs_.interleave_panel, c.screen_width, c.screen_height, c.inverted_views ? 1 : 0, c.flip_y ? 1 : 0);
+    gl::api.Uniform4i(programs_.interleave_layout, grid_.x, grid_.y, view_size_.x, view_size_.y);
     detail::bind_texture(0, output_texture_);
-    gl::api.BindVertexArray(programs.empty_vertex_array.id());
+    gl::api.BindVertexArray(programs_.empty_vertex_array.id());
     gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
     gl::api.BindVertexArray(0);
   }
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void LightFieldOutput::present(const Programs& programs, const PresentTarget& target, int width, int height) const {
+void LightFieldOutput::present(const OutputFrame&, const PresentTarget& target, int width, int height) {
+  const Programs& programs = programs_;
   const glm::ivec2 source = quilt() ? native_size() : output_size_;
   // Fit inside, keeping the aspect; the rest is black. A quilt's panel image is meant pixel for pixel,
   // and is, when the surface is the panel.
@@ -222,7 +227,7 @@ void LightFieldOutput::present(const Programs& programs, const PresentTarget& ta
     // The outputs hold sRGB-encoded bytes; a blit into an sRGB framebuffer would encode them again.
     gl::api.Viewport(x, y, w, h);
     gl::api.Disable(GL_DEPTH_TEST);
-    gl::api.UseProgram(programs.decode_copy.id());
+    gl::api.UseProgram(programs.decode_copy->id());
     gl::api.Uniform4i(programs.decode_copy_rect, x, y, w, h);
     detail::bind_texture(0, quilt() ? native_texture_ : output_texture_);
     gl::api.BindVertexArray(programs.empty_vertex_array.id());
@@ -250,9 +255,9 @@ std::vector<uint8_t> LightFieldOutput::read_native() const {
   return read_presented(PresentTarget{native_fbo_.id(), 0, 0, false}, size.x, size.y);
 }
 
-bool LightFieldRenderer::init(const gl::Caps& caps, std::string& error) {
-  caps_ = caps;
-  return programs_.build(caps, error);
+bool LightFieldRenderer::init(gl::Session& session, std::string& error) {
+  caps_ = session.caps();
+  return programs_.build(session, error);
 }
 
 bool LightFieldRenderer::upload(const scene::Scene& scene, std::string&) {
@@ -274,13 +279,12 @@ bool LightFieldRenderer::configure(const lightfield::Display& display, const Fra
     uploaded_for_ = display;
   }
   gl_error_.clear();
-  if (!output_.configure(programs_, caps_, display, settings, source_->bounds, scene_.radius(), targets_, error)) return false;
-  output_.set_camera(camera);
+  output_.show_on(display);
+  if (!output_.configure(settings, scene_, false, error)) return false;
+  output_.aim(camera);
   return true;
 }
 
-void LightFieldRenderer::render(bool probe, const AfterView& after_view) {
-  output_.render(programs_, scene_, targets_, 1.0f, probe, after_view, &gl_error_);
-}
+void LightFieldRenderer::render() { output_.render(OutputFrame{scene_, 1.0f, nullptr, &gl_error_}); }
 
 }  // namespace render

@@ -58,7 +58,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
     const bool fetches = textured || !untextured_variant;
     const RasterProgram* program = depth_only ? &depth_program : fetches ? &textured_program : &plain_program;
     if (program != bound) {
-      gl::api.UseProgram(program->program.id());
+      gl::api.UseProgram(program->program->id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
       if (program->texture >= 0) gl::api.Uniform1i(program->texture, 0);
       bound = program;
@@ -110,7 +110,7 @@ void accumulate(const PassContext& context, bool moved) {
   detail::update_uniform_buffer(targets.temporal_ubo, &targets.temporal_params, sizeof targets.temporal_params);
 
   const int previous = targets.history_current, next = 1 - previous;
-  gl::api.UseProgram(context.programs.temporal.id());
+  gl::api.UseProgram(context.programs.temporal->id());
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_TEMPORAL_PARAMS, targets.temporal_ubo.id());
   bind_texture(0, targets.ao_raw);
   bind_texture(1, targets.normal);
@@ -193,7 +193,7 @@ bool ao_passes(const PassContext& context) {
   int deepest = 0;
   for (int k = params.first_radius; k < params.end_radius; ++k) deepest = std::max(deepest, params.levels[k].x);
   if (deepest > 0) {
-    gl::api.UseProgram(context.programs.depth_chain.id());
+    gl::api.UseProgram(context.programs.depth_chain->id());
     bind_texture(0, targets.linear_depth);
     for (int level = 1; level <= deepest; ++level) {
       gl::api.Uniform1i(context.programs.depth_chain_source_level, level - 1);
@@ -222,9 +222,9 @@ bool ao_passes(const PassContext& context) {
   if (temporal) accumulate(context, !still);
 
   if (settings.blur.mode != ssao::Blur::off) {
-    const gl::Program& blur = settings.blur.mode == ssao::Blur::denoise     ? context.programs.blur_denoise
-                              : settings.blur.mode == ssao::Blur::bilateral ? context.programs.blur_bilateral
-                                                                            : context.programs.blur_gaussian;
+    const gl::Program& blur = settings.blur.mode == ssao::Blur::denoise     ? *context.programs.blur_denoise
+                              : settings.blur.mode == ssao::Blur::bilateral ? *context.programs.blur_bilateral
+                                                                            : *context.programs.blur_gaussian;
     gl::api.UseProgram(blur.id());
     bind_texture(1, targets.normal);  // read by denoise only
     const gl::Texture* sources[2] = {&targets.ao_unblurred(), &targets.ao_temp};
@@ -278,7 +278,7 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   context.finish_pass(kPresent);
 }
 
-void render_view(const PassContext& context, const PresentTarget& target, float fade) {
+void draw_view(const PassContext& context) {
   ViewTargets& targets = context.targets;
   const FrameSettings& settings = targets.settings();
   if (context.view.module) {
@@ -298,6 +298,10 @@ void render_view(const PassContext& context, const PresentTarget& target, float 
   gbuffer_pass(context, targets.prepass_now);
   if (settings.ao) ao_passes(context);
   else targets.reused_ao = false;
+}
+
+void render_view(const PassContext& context, const PresentTarget& target, float fade) {
+  draw_view(context);
   present_pass(context, target, fade);
 }
 

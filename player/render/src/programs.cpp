@@ -6,47 +6,53 @@
 namespace render {
 namespace {
 
-bool build_raster(RasterProgram& out, const char* fragment, const std::string& defines, std::string& error) {
-  out.program = gl::build_program({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
-  if (!out.program) return false;
-  out.model_view = gl::uniform(out.program, "u_model_view");
-  out.projection = gl::uniform(out.program, "u_projection");
-  out.normal_matrix = gl::uniform(out.program, "u_normal_matrix");
-  out.base_color = gl::uniform(out.program, "u_base_color");
-  out.texture = gl::uniform(out.program, "u_base_color_texture");
+bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragment, const std::string& defines,
+                  std::string& error) {
+  out.program = cache.get({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
+  if (out.program == nullptr) return false;
+  out.model_view = gl::uniform(*out.program, "u_model_view");
+  out.projection = gl::uniform(*out.program, "u_projection");
+  out.normal_matrix = gl::uniform(*out.program, "u_normal_matrix");
+  out.base_color = gl::uniform(*out.program, "u_base_color");
+  out.texture = gl::uniform(*out.program, "u_base_color_texture");
   return true;
 }
 
-bool build_compute(gl::Program& out, const char* file, const std::string& defines, std::string& error) {
-  out = gl::build_program({{GL_COMPUTE_SHADER, file}}, defines, error);
-  return static_cast<bool>(out);
+// A program of fullscreen.vert and `fragment`, or of the compute shader `file`, with its samplers
+// bound to units in the order given.
+const gl::Program* build_fullscreen(gl::ProgramCache& cache, const char* fragment, const std::string& defines,
+                                    std::initializer_list<const char*> samplers, std::string& error) {
+  const gl::Program* program =
+      cache.get({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
+  if (program != nullptr) detail::assign_units(*program, samplers);
+  return program;
 }
 
-bool build_present(gl::Program& out, const std::string& defines, std::string& error) {
-  out = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "present.frag"}}, defines, error);
-  if (!out) return false;
-  detail::assign_units(out, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"});
-  return true;
+const gl::Program* build_compute(gl::ProgramCache& cache, const char* file, const std::string& defines,
+                                 std::initializer_list<const char*> samplers, std::string& error) {
+  const gl::Program* program = cache.get({{GL_COMPUTE_SHADER, file}}, defines, error);
+  if (program != nullptr) detail::assign_units(*program, samplers);
+  return program;
 }
 
 }  // namespace
 
-bool Programs::build(const gl::Caps&, std::string& error) {
-  if (!build_raster(gbuffer_plain, "gbuffer.frag", "", error) ||
-      !build_raster(gbuffer_textured, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
-      !build_raster(depth_only, "depth_only.frag", "", error) || !build_compute(depth_chain, "depth_chain.comp", "", error) ||
-      !build_compute(upsample, "upsample.comp", "", error) || !build_compute(blur_gaussian, "blur.comp", "", error) ||
-      !build_compute(blur_bilateral, "blur.comp", "#define BILATERAL 1\n", error) ||
-      !build_compute(blur_denoise, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", error) ||
-      !build_compute(temporal, "temporal.comp", "", error) || !present(Output::color, true, error) || !present(Output::color, false, error))
+bool Programs::build(gl::Session& session, std::string& error) {
+  cache_ = &session.programs();
+  gl::ProgramCache& cache = *cache_;
+  if (!build_raster(cache, gbuffer_plain, "gbuffer.frag", "", error) ||
+      !build_raster(cache, gbuffer_textured, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+      !build_raster(cache, depth_only, "depth_only.frag", "", error))
     return false;
-  depth_chain_source_level = gl::uniform(depth_chain, "u_source_level");
-  detail::assign_units(depth_chain, {"u_linear_depth"});
-  detail::assign_units(upsample, {"u_ao", "u_linear_depth", "u_normal"});
-  detail::assign_units(blur_gaussian, {"u_source"});
-  detail::assign_units(blur_bilateral, {"u_source"});
-  detail::assign_units(blur_denoise, {"u_source", "u_normal"});
-  detail::assign_units(temporal, {"u_current", "u_normal", "u_history", "u_history_normal"});
+  if (!(depth_chain = build_compute(cache, "depth_chain.comp", "", {"u_linear_depth"}, error)) ||
+      !(upsample = build_compute(cache, "upsample.comp", "", {"u_ao", "u_linear_depth", "u_normal"}, error)) ||
+      !(blur_gaussian = build_compute(cache, "blur.comp", "", {"u_source"}, error)) ||
+      !(blur_bilateral = build_compute(cache, "blur.comp", "#define BILATERAL 1\n", {"u_source"}, error)) ||
+      !(blur_denoise = build_compute(cache, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", {"u_source", "u_normal"}, error)) ||
+      !(temporal = build_compute(cache, "temporal.comp", "", {"u_current", "u_normal", "u_history", "u_history_normal"}, error)) ||
+      !present(Picture::color, true, error) || !present(Picture::color, false, error))
+    return false;
+  depth_chain_source_level = gl::uniform(*depth_chain, "u_source_level");
   gl::api.UseProgram(0);
   empty_vertex_array = gl::make_vertex_array();
 
@@ -62,21 +68,21 @@ bool Programs::build(const gl::Caps&, std::string& error) {
   return true;
 }
 
-const gl::Program* Programs::present(Output output, bool srgb, std::string& error) {
-  gl::Program& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0];
-  if (!program) {
+const gl::Program* Programs::present(Picture output, bool srgb, std::string& error) {
+  const gl::Program*& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0];
+  if (program == nullptr) {
     const std::string defines = "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" +
                                 (srgb ? "" : "#define ENCODE_SRGB 1\n");
-    if (!build_present(program, defines, error)) return nullptr;
+    program = build_fullscreen(*cache_, "present.frag", defines, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"}, error);
     gl::api.UseProgram(0);
   }
-  return &program;
+  return program;
 }
 
 const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error, bool modules) {
   const size_t kind = modules ? 1 : 0;
-  gl::Program& program = ssao_[kind][index(estimator)][index(precision)];
-  if (!program) {
+  const gl::Program*& program = ssao_[kind][index(estimator)][index(precision)];
+  if (program == nullptr) {
     if (modules && estimator == ssao::Estimator::horizon) {
       error = "estimator: horizon searches screen-space slices and has no light field form; a modules display takes "
               "sphere or hemisphere";
@@ -85,47 +91,43 @@ const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision pre
     const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n" +
                                 (precision == ssao::Precision::mediump ? "#define AO_MEDIUMP 1\n" : "") +
                                 (modules ? "#define LIGHTFIELD_MODULES 1\n" : "");
-    if (!build_compute(program, "ssao.comp", defines, error)) return nullptr;
-    ssao_inverse_far_[kind][index(estimator)][index(precision)] = gl::uniform(program, "u_inverse_far");
+    program = build_compute(*cache_, "ssao.comp", defines, {"u_linear_depth", "u_normal", "u_positions"}, error);
+    if (program == nullptr) return nullptr;
+    ssao_inverse_far_[kind][index(estimator)][index(precision)] = gl::uniform(*program, "u_inverse_far");
     ssao_defines_[kind][index(estimator)][index(precision)] = defines;
-    detail::assign_units(program, {"u_linear_depth", "u_normal", "u_positions"});
     gl::api.UseProgram(0);
   }
-  return &program;
+  return program;
 }
 
 bool Programs::build_rotate(std::string& error) {
-  if (rotate) return true;
-  rotate = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "rotate.frag"}}, "", error);
-  if (!rotate) return false;
-  detail::assign_units(rotate, {"u_source"});
-  rotate_quarter_turns = gl::uniform(rotate, "u_quarter_turns");
+  if (rotate != nullptr) return true;
+  rotate = build_fullscreen(*cache_, "rotate.frag", "", {"u_source"}, error);
+  if (rotate == nullptr) return false;
+  rotate_quarter_turns = gl::uniform(*rotate, "u_quarter_turns");
   gl::api.UseProgram(0);
   return true;
 }
 
 bool Programs::build_interleave(std::string& error) {
-  if (interleave) return true;
-  interleave = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "interleave.frag"}}, "", error);
-  if (!interleave) return false;
-  detail::assign_units(interleave, {"u_quilt"});
-  interleave_constants = gl::uniform(interleave, "u_constants");
-  interleave_panel = gl::uniform(interleave, "u_panel");
-  interleave_layout = gl::uniform(interleave, "u_layout");
-  decode_copy = gl::build_program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "decode_copy.frag"}}, "", error);
-  if (!decode_copy) return false;
-  detail::assign_units(decode_copy, {"u_source"});
-  decode_copy_rect = gl::uniform(decode_copy, "u_rect");
+  if (interleave != nullptr && decode_copy != nullptr) return true;
+  interleave = build_fullscreen(*cache_, "interleave.frag", "", {"u_quilt"}, error);
+  decode_copy = interleave ? build_fullscreen(*cache_, "decode_copy.frag", "", {"u_source"}, error) : nullptr;
+  if (decode_copy == nullptr) return false;
+  interleave_constants = gl::uniform(*interleave, "u_constants");
+  interleave_panel = gl::uniform(*interleave, "u_panel");
+  interleave_layout = gl::uniform(*interleave, "u_layout");
+  decode_copy_rect = gl::uniform(*decode_copy, "u_rect");
   gl::api.UseProgram(0);
   return true;
 }
 
 bool Programs::build_module_programs(std::string& error) {
-  if (module_gbuffer_plain.program) return true;
+  if (module_gbuffer_plain.program != nullptr) return true;
   const std::string modules = "#define LIGHTFIELD_MODULES 1\n";
-  if (!build_raster(module_gbuffer_plain, "gbuffer.frag", modules, error) ||
-      !build_raster(module_gbuffer_textured, "gbuffer.frag", modules + "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
-      !build_raster(module_depth_only, "depth_only.frag", modules, error)) {
+  if (!build_raster(*cache_, module_gbuffer_plain, "gbuffer.frag", modules, error) ||
+      !build_raster(*cache_, module_gbuffer_textured, "gbuffer.frag", modules + "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+      !build_raster(*cache_, module_depth_only, "depth_only.frag", modules, error)) {
     module_gbuffer_plain = RasterProgram{};
     return false;
   }

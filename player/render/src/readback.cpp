@@ -88,7 +88,7 @@ std::vector<glm::vec2> read_ao_full(const Programs& programs, const ViewTargets&
   gl::Texture full = detail::make_target(GL_RGBA16F, w, h);
   const shared_layout::UpsampleParams params = pack_upsample_params(targets);
   gl::Buffer ubo = detail::make_uniform_buffer(&params, sizeof params);
-  gl::api.UseProgram(programs.upsample.id());
+  gl::api.UseProgram(programs.upsample->id());
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_UPSAMPLE_PARAMS, ubo.id());
   detail::bind_texture(0, targets.ao_result());
   detail::bind_texture(1, targets.linear_depth);

@@ -19,11 +19,11 @@ void note_raster_time(ViewTargets& targets, const PassTimes& times) {
   if (slot < 0.0) slot = std::max(0.0, times.ms[kDepthPrepass]) + times.ms[kGBuffer];
 }
 
-bool Renderer::init(const gl::Caps& caps, const PresentTarget& target, std::string& error, bool serialise_timing) {
-  caps_ = caps;
+bool Renderer::init(gl::Session& session, const PresentTarget& target, std::string& error, bool serialise_timing) {
+  caps_ = session.caps();
   target_ = target;
-  if (!programs_.build(caps, error)) return false;
-  timer_.create(caps.timer_query, serialise_timing);
+  if (!programs_.build(session, error)) return false;
+  timer_.create(caps_.timer_query, serialise_timing);
   return true;
 }
 
@@ -31,15 +31,16 @@ bool Renderer::upload(const scene::Scene& scene, std::string& error) { return sc
 
 bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   gl_error_.clear();
-  return targets_.configure(programs_, caps_, settings, scene_.radius(), target_.srgb, error);
+  return output_.configure(settings, scene_, target_.srgb, error);
 }
 
 void Renderer::render(const View& view, float fade) {
-  view_ = view;
   inverse_far_ = static_cast<float>(1.0 / view.far);
   timer_.begin_frame();
-  const PassContext context{programs_, scene_, targets_, view_, &timer_, &gl_error_};
-  render_view(context, target_, fade);
+  output_.aim(view);
+  const OutputFrame frame{scene_, fade, &timer_, &gl_error_};
+  output_.render(frame);
+  output_.present(frame, target_, settings().width, settings().height);
   timer_.end_frame();
 }
 
@@ -48,20 +49,20 @@ PassTimes Renderer::collect_times() {
   times.fill(-1.0);
   timer_.wait(times);
   const PassTimes result = to_pass_times(times, timer_.gpu_timed());
-  note_raster_time(targets_, result);
+  note_raster_time(targets(), result);
   return result;
 }
 
 std::vector<uint8_t> Renderer::read_color() const {
-  return read_presented(target_, targets_.settings().width, targets_.settings().height);
+  return read_presented(target_, settings().width, settings().height);
 }
 
-std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(targets_.ao_raw, targets_.ao_width(), targets_.ao_height()); }
+std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(targets().ao_raw, targets().ao_width(), targets().ao_height()); }
 
 std::vector<glm::vec2> Renderer::read_ao_blurred() const {
-  return read_ao(targets_.ao_result(), targets_.ao_width(), targets_.ao_height());
+  return read_ao(targets().ao_result(), targets().ao_width(), targets().ao_height());
 }
 
-std::vector<glm::vec2> Renderer::read_ao_final() const { return read_ao_full(programs_, targets_); }
+std::vector<glm::vec2> Renderer::read_ao_final() const { return read_ao_full(programs_, targets()); }
 
 }  // namespace render

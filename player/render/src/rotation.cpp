@@ -55,7 +55,7 @@ void Rotation::finish(const Programs& programs, const PresentTarget& surface) co
   gl::api.Viewport(surface.x, surface.y, surface_width_, surface_height_);
   gl::api.Disable(GL_DEPTH_TEST);
   gl::api.Disable(GL_BLEND);
-  gl::api.UseProgram(programs.rotate.id());
+  gl::api.UseProgram(programs.rotate->id());
   gl::api.Uniform1i(programs.rotate_quarter_turns, degrees_ / 90);
   gl::api.ActiveTexture(GL_TEXTURE0);
   gl::api.BindTexture(GL_TEXTURE_2D, texture_.id());

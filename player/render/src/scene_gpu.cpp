@@ -134,6 +134,7 @@ void SceneGpu::finish() {
     return (materials_[static_cast<size_t>(a.material)].base_color_texture >= 0) <
            (materials_[static_cast<size_t>(b.material)].base_color_texture >= 0);
   });
+  bounds_ = scene.bounds;
   radius_ = scene.bounds.radius();
   centre_ = scene.bounds.centre();
   gl::api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);

@@ -13,8 +13,8 @@
 
 namespace app {
 
-FrameDrawer::FrameDrawer(platform::Platform& platform, const gl::Caps& caps, const render::FrameSettings& base)
-    : platform_(platform), caps_(caps), base_(base) {}
+FrameDrawer::FrameDrawer(gl::Session& session, const render::FrameSettings& base)
+    : session_(session), platform_(session.platform()), base_(base) {}
 
 bool FrameDrawer::configure_rotation(std::string& error) {
   surface_ = {platform_.framebuffer(), 0, 0, platform_.srgb_framebuffer()};
@@ -26,11 +26,11 @@ bool FrameDrawer::configure_rotation(std::string& error) {
 
 bool FrameDrawer::open(int rotation_degrees, std::string& error) {
   rotation_degrees_ = rotation_degrees;
-  if (!configure_rotation(error) || !programs_.build(caps_, error)) return false;
+  if (!programs_.build(session_, error) || !configure_rotation(error)) return false;
   for (ssao::Estimator estimator : ssao::kEstimators)
     for (ssao::Precision precision : ssao::kPrecisions)
       if (!programs_.ssao(estimator, precision, error)) return false;
-  timer_.create(caps_.timer_query, false);
+  timer_.create(session_.caps().timer_query, false);
   return true;
 }
 
@@ -63,8 +63,8 @@ render::FrameSettings FrameDrawer::settings_for(const playback::Item& item) cons
   for (const playback::Setting& setting : item.settings) render::apply_setting(settings, setting.key, setting.value, ignored);
   if (item.has_background) settings.background = item.background;
   if (ao_override_) settings.ao = ao_on_;
-  constexpr int kOutputs = static_cast<int>(std::size(render::kOutputNames));
-  settings.output = static_cast<render::Output>((static_cast<int>(settings.output) + output_offset_) % kOutputs);
+  constexpr int kPictures = static_cast<int>(std::size(render::kPictureNames));
+  settings.output = static_cast<render::Picture>((static_cast<int>(settings.output) + output_offset_) % kPictures);
   return settings;
 }
 
@@ -75,42 +75,34 @@ void FrameDrawer::prepare(const playback::Cue& cue, const std::string& key, cons
   const bool new_item = cue.item != configured_item_ || cue.sequence != configured_sequence_ || key != shown_key_;
   if (new_item || cue.cut) {
     std::string error;
-    render::FrameSettings settings = settings_for(item);
-    if (display != nullptr && display->type == lightfield::DisplayType::modules &&
-        settings.ao_settings.estimator == ssao::Estimator::horizon) {
-      // Horizon searches screen-space slices; Algorithm 2 for modules runs the hemisphere estimator.
-      settings.ao_settings.estimator = ssao::Estimator::hemisphere;
+    output_ = &view_output_;
+    if (display != nullptr) {
+      light_field_.show_on(*display);
+      output_ = &light_field_;
     }
-    const bool configured = display != nullptr ? light_field_.configure(programs_, caps_, *display, settings, scene.bounds,
-                                                                        gpu_->radius(), light_field_targets_, error)
-                                               : targets_.configure(programs_, caps_, settings, gpu_->radius(), present_.srgb, error);
-    if (!configured) {
+    configured_ok_ = output_->configure(settings_for(item), *gpu_, present_.srgb, error);
+    if (!configured_ok_)
       status.report(key + ": " + error);
-      gpu_ = nullptr;
-    }
+    else if (!output_->adjustment().empty())
+      status.note(key + ": " + output_->adjustment());
     configured_item_ = cue.item;
     configured_sequence_ = cue.sequence;
     shown_key_ = key;
   }
-  shown_display_ = gpu_ != nullptr && display != nullptr;
+  // An item its output cannot show is the background until something configures it again.
+  if (!configured_ok_) gpu_ = nullptr;
   if (gpu_ == nullptr) return;
-  if (shown_display_) {
-    const glm::ivec2 size = light_field_.view_size();
-    light_field_.set_camera(scene::frame(scene.bounds, framing_of(cue.camera), size.x, size.y));
-  } else {
-    view_ = render::view_of(scene::frame(scene.bounds, framing_of(cue.camera), targets_.settings().width, targets_.settings().height));
-  }
+  const glm::ivec2 size = output_->view_size();
+  output_->aim(scene::frame(scene.bounds, framing_of(cue.camera), size.x, size.y));
 }
 
 void FrameDrawer::draw(float fade) {
-  if (gpu_ != nullptr && shown_display_) {
-    // Every module or view, then what the display is fed (a quilt's panel image, the modules'
-    // montage) scaled onto the surface. Per-pass times are per view here: the frame is not timed by pass.
-    light_field_.render(programs_, *gpu_, light_field_targets_, fade, false, {}, &gl_error_);
-    light_field_.present(programs_, present_, rotation_.width(), rotation_.height());
-  } else if (gpu_ != nullptr) {
-    const render::PassContext pass{programs_, *gpu_, targets_, view_, &timer_, &gl_error_};
-    render::render_view(pass, present_, fade);
+  if (gpu_ != nullptr) {
+    // A light field output does not time its views by pass: the frame's pass times are the view's.
+    const bool timed = output_ == &view_output_;
+    const render::OutputFrame frame{*gpu_, fade, timed ? &timer_ : nullptr, &gl_error_};
+    output_->render(frame);
+    output_->present(frame, present_, rotation_.width(), rotation_.height());
   } else {
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer);
     gl::api.Viewport(0, 0, rotation_.width(), rotation_.height());
@@ -123,8 +115,8 @@ void FrameDrawer::end_frame(bool scene_timed, StatusReporter& status) {
   timer_.end_frame();
   // Pass times arrive a frame or two late; the automatic prepass choice is made from them.
   gl::FrameTimer::Times times;
-  if (timer_.poll(times) && gpu_ != nullptr && scene_timed && !shown_display_)
-    render::note_raster_time(targets_, render::to_pass_times(times, timer_.gpu_timed()));
+  if (timer_.poll(times) && gpu_ != nullptr && scene_timed && output_ == &view_output_)
+    render::note_raster_time(view_output_.targets(), render::to_pass_times(times, timer_.gpu_timed()));
   if (!gl_error_.empty()) {
     status.report("GL: " + gl_error_);
     gl_error_.clear();

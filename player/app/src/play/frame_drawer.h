@@ -5,11 +5,13 @@
 // LED panel over a desktop window, and the frame files of --out and --snapshot.
 #include "gl/caps.h"
 #include "gl/frame_timer.h"
+#include "gl/session.h"
 #include "hal/status.h"
 #include "overlay.h"
 #include "platform/platform.h"
 #include "playback/timeline.h"
 #include "render/light_field.h"
+#include "render/output.h"
 #include "render/passes.h"
 #include "render/programs.h"
 #include "render/rotation.h"
@@ -29,8 +31,8 @@ class StatusReporter;
 
 class FrameDrawer {
  public:
-  // `base`: the command line's settings, which a playlist item's settings override.
-  FrameDrawer(platform::Platform& platform, const gl::Caps& caps, const render::FrameSettings& base);
+  // `base`: the command line's settings, which a playlist item's settings override. Both outlive the drawer.
+  FrameDrawer(gl::Session& session, const render::FrameSettings& base);
 
   // Builds every program and SSAO variant now, so a playlist item with another estimator or
   // precision does not compile mid-play, and turns frames by `rotation_degrees`. False and why.
@@ -76,11 +78,10 @@ class FrameDrawer {
   bool configure_rotation(std::string& error);
   render::FrameSettings settings_for(const playback::Item& item) const;
 
+  gl::Session& session_;
   platform::Platform& platform_;
-  const gl::Caps& caps_;
   const render::FrameSettings& base_;
   render::Programs programs_;
-  render::ViewTargets targets_;
   render::PresentTarget surface_{};  // the platform's framebuffer
   render::PresentTarget present_{};  // the surface, or the rotation's target
   render::Rotation rotation_;
@@ -90,13 +91,13 @@ class FrameDrawer {
   // The item the targets are configured for.
   std::string shown_key_;
   int configured_item_ = -2;
+  bool configured_ok_ = false;
   std::uint64_t configured_sequence_ = 0;
   const render::SceneGpu* gpu_ = nullptr;  // this frame's scene; null: the background
-  render::View view_;
-  // Items on a light field display: its views and outputs, and the targets they share.
-  render::LightFieldOutput light_field_;
-  render::ViewTargets light_field_targets_;
-  bool shown_display_ = false;
+  // The item's output: the surface's own view, or a light field display's modules or views.
+  render::ViewOutput view_output_{programs_, session_.caps()};
+  render::LightFieldOutput light_field_{programs_, session_.caps()};
+  render::Output* output_ = &view_output_;
   std::string gl_error_;
 
   // Button overrides.

@@ -45,6 +45,12 @@ void StatusReporter::report(const std::string& error) {
   if (errors_.size() > kKeep) errors_.erase(errors_.begin());
 }
 
+void StatusReporter::note(const std::string& text) {
+  if (std::find(notes_.begin(), notes_.end(), text) != notes_.end()) return;
+  notes_.push_back(text);
+  err_ << "note: " << text << "\n";
+}
+
 bool StatusReporter::due(bool force) {
   const double now = clock_.now();
   constexpr double kPeriod = 2.0;  // often enough for a monitor, rarely enough for an SD card

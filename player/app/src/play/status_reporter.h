@@ -47,6 +47,9 @@ class StatusReporter {
   // and the error LED's warning for a minute.
   void report(const std::string& error);
   const std::vector<std::string>& errors() const { return errors_; }
+  // Not an error, but worth a line: "note: ..." on stderr, the first time it is noted (an item that
+  // comes round again does not repeat it).
+  void note(const std::string& text);
 
   // The state to systemd at once (it sends only changes).
   void announce_state() { service_.state(kiosk_.name()); }
@@ -76,6 +79,7 @@ class StatusReporter {
   ServiceNotifier service_;
   std::optional<size_t> status_led_, error_led_;
   std::vector<std::string> errors_;
+  std::vector<std::string> notes_;
   double last_status_s_ = -1e9;
   std::string last_status_error_;
   FrameStats stats_;

@@ -83,7 +83,4 @@ extern Api api;
 // point in `error`.
 bool load(const platform::Platform& platform, std::string& error);
 
-// platform::create, then load: a current context with its entry points, or null and why.
-std::unique_ptr<platform::Platform> open_context(const platform::Options& options, std::string& error);
-
 }  // namespace gl

@@ -43,7 +43,9 @@ bool ao_passes(const PassContext& context);
 // multiplies the image (transitions between playlist items).
 void present_pass(const PassContext& context, const PresentTarget& target, float fade);
 
-// All of them in order for one view, choosing the prepass as the settings say.
+// The passes before present_pass in order for one view, choosing the prepass as the settings say.
+void draw_view(const PassContext& context);
+// draw_view, then present_pass.
 void render_view(const PassContext& context, const PresentTarget& target, float fade);
 
 }  // namespace render

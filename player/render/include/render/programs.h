@@ -1,9 +1,10 @@
 #pragma once
-// Every compiled program the passes use, built once per context. SSAO variants (one per estimator,
-// precision and view kind) and the light field modules' G-buffer programs are compiled on first use
-// and kept.
-#include "gl/caps.h"
+// Every program the passes use, by name, with its uniform locations. The programs themselves are the
+// session's (gl/session.h): compiled once per context and shared by every Programs of that context.
+// SSAO variants (one per estimator, precision and view kind) and the light field modules' G-buffer
+// programs are compiled on first use.
 #include "gl/objects.h"
+#include "gl/session.h"
 #include "render/settings.h"
 #include "ssao/sampling.h"
 
@@ -13,14 +14,15 @@
 namespace render {
 
 struct RasterProgram {
-  gl::Program program;
+  const gl::Program* program = nullptr;
   GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1;
 };
 
 class Programs {
  public:
-  // Returns false and says why (the file, the variant and the driver's log).
-  bool build(const gl::Caps& caps, std::string& error);
+  // Builds what every frame needs (or finds it in the session). Returns false and says why (the file,
+  // the variant and the driver's log). The session outlives this object.
+  bool build(gl::Session& session, std::string& error);
   // The SSAO program for `estimator` at `precision` (mediump: the AO_MEDIUMP variant), compiled now if
   // it was not yet; null and `error` on failure.
   // `modules`: Algorithm 2 for a light field display's optical module (LIGHTFIELD_MODULES); the
@@ -38,33 +40,35 @@ class Programs {
   bool build_module_programs(std::string& error);
   // The lenticular interleave of quilt displays (interleave.frag), compiled on first call.
   bool build_interleave(std::string& error);
-  gl::Program interleave;
+  const gl::Program* interleave = nullptr;
   GLint interleave_constants = -1, interleave_panel = -1, interleave_layout = -1;
   // An sRGB-encoded texture into a framebuffer that encodes itself (decode_copy.frag), built with it.
-  gl::Program decode_copy;
+  const gl::Program* decode_copy = nullptr;
   GLint decode_copy_rect = -1;
   // A frame turned by quarter turns onto the surface (rotate.frag, see render/rotation.h), compiled on first call.
   bool build_rotate(std::string& error);
-  gl::Program rotate;
+  const gl::Program* rotate = nullptr;
   GLint rotate_quarter_turns = -1;
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs
-  gl::Program depth_chain, blur_gaussian, blur_bilateral, blur_denoise, upsample, temporal;
+  const gl::Program *depth_chain = nullptr, *blur_gaussian = nullptr, *blur_bilateral = nullptr, *blur_denoise = nullptr,
+                    *upsample = nullptr, *temporal = nullptr;
   GLint depth_chain_source_level = -1;
   // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not.
   // The shaded image's two are built by build(); the debug outputs' on first use.
-  const gl::Program* present(Output output, bool srgb, std::string& error);
+  const gl::Program* present(Picture output, bool srgb, std::string& error);
   gl::VertexArray empty_vertex_array;  // the present pass has no attributes; core GL still wants a VAO
   gl::Texture white;  // stands in for a missing base colour texture when untextured_variant is off
 
  private:
+  gl::ProgramCache* cache_ = nullptr;
   static size_t index(ssao::Estimator estimator) { return static_cast<size_t>(estimator); }
   static size_t index(ssao::Precision precision) { return static_cast<size_t>(precision); }
   template <typename T>
   using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
-  PerVariant<gl::Program> ssao_{};
-  std::array<std::array<gl::Program, 2>, std::size(kOutputNames)> present_{};
+  PerVariant<const gl::Program*> ssao_{};
+  std::array<std::array<const gl::Program*, 2>, std::size(kPictureNames)> present_{};
   PerVariant<std::string> ssao_defines_{};
   PerVariant<GLint> ssao_inverse_far_{};
 };

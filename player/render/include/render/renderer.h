@@ -1,10 +1,10 @@
 #pragma once
 // One view of one scene, for the commands and tests that render a single image: the programs, the
-// scene's GPU data, one view's targets and a frame timer, put together. Each part is its own
-// class (programs.h, scene_gpu.h, view_targets.h, passes.h); light field output uses them directly
-// with many views.
+// scene's GPU data, a view output (output.h) and a frame timer, put together.
 #include "gl/caps.h"
 #include "gl/frame_timer.h"
+#include "gl/session.h"
+#include "render/output.h"
 #include "render/passes.h"
 #include "render/programs.h"
 #include "render/readback.h"
@@ -32,9 +32,10 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Compiles the programs; `target` is where frames are presented. `serialise_timing`: without
-  // timer queries, time passes around glFinish (render command, benchmarks; never the player loop).
-  bool init(const gl::Caps& caps, const PresentTarget& target, std::string& error, bool serialise_timing = true);
+  // Builds the programs in `session` (which outlives the renderer); `target` is where frames are
+  // presented. `serialise_timing`: without timer queries, time passes around glFinish (render
+  // command, benchmarks; never the player loop).
+  bool init(gl::Session& session, const PresentTarget& target, std::string& error, bool serialise_timing = true);
   bool upload(const scene::Scene& scene, std::string& error);
   bool configure(const FrameSettings& settings, std::string& error);
 
@@ -48,42 +49,41 @@ class Renderer {
   const std::string& gl_error() const { return gl_error_; }
 
   std::vector<uint8_t> read_color() const;  // RGBA8, row 0 at the top
-  std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets_); }
-  std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets_); }
-  std::vector<glm::vec3> read_view_face_normals() const { return render::read_view_face_normals(targets_); }
+  std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets()); }
+  std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets()); }
+  std::vector<glm::vec3> read_view_face_normals() const { return render::read_view_face_normals(targets()); }
   std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
   std::vector<glm::vec2> read_ao_blurred() const;  // ditto, what the present pass reads: blurred, else the temporal average, else raw
   std::vector<glm::vec2> read_ao_final() const;
-  std::vector<float> read_history_frames() const { return render::read_history_frames(targets_); }        // full resolution: what the present pass used
+  std::vector<float> read_history_frames() const { return render::read_history_frames(targets()); }        // full resolution: what the present pass used
 
-  const shared_layout::SsaoParams& ssao_params() const { return targets_.ssao_params; }
-  const shared_layout::BlurParams& blur_params(int direction) const { return targets_.blur_params[direction]; }
-  shared_layout::UpsampleParams upsample_params() const { return render::pack_upsample_params(targets_); }
-  bool reused_ao() const { return targets_.reused_ao; }
+  const shared_layout::SsaoParams& ssao_params() const { return targets().ssao_params; }
+  const shared_layout::BlurParams& blur_params(int direction) const { return targets().blur_params[direction]; }
+  shared_layout::UpsampleParams upsample_params() const { return render::pack_upsample_params(targets()); }
+  bool reused_ao() const { return targets().reused_ao; }
   // Frames the AO shown is the average of (1 without temporal accumulation).
-  int ao_frames_averaged() const { return targets_.temporal() ? std::max(targets_.still_frames, 1) : 1; }
-  bool prepass_in_use() const { return targets_.prepass_now; }
-  double raster_ms_with_prepass() const { return targets_.raster_with; }
-  double raster_ms_without_prepass() const { return targets_.raster_without; }
-  float base_radius() const { return targets_.base_radius; }
+  int ao_frames_averaged() const { return targets().temporal() ? std::max(targets().still_frames, 1) : 1; }
+  bool prepass_in_use() const { return targets().prepass_now; }
+  double raster_ms_with_prepass() const { return targets().raster_with; }
+  double raster_ms_without_prepass() const { return targets().raster_without; }
+  float base_radius() const { return targets().base_radius; }
   float inverse_far() const { return inverse_far_; }
-  const FrameSettings& settings() const { return targets_.settings(); }
-  const View& last_view() const { return view_; }
+  const FrameSettings& settings() const { return targets().settings(); }
+  const View& last_view() const { return output_.view(); }
 
   Programs& programs() { return programs_; }
   const Programs& programs() const { return programs_; }
   const SceneGpu& scene() const { return scene_; }
-  ViewTargets& targets() { return targets_; }
-  const ViewTargets& targets() const { return targets_; }
+  ViewTargets& targets() { return output_.targets(); }
+  const ViewTargets& targets() const { return output_.targets(); }
 
  private:
   gl::Caps caps_;
   PresentTarget target_;
   Programs programs_;
   SceneGpu scene_;
-  ViewTargets targets_;
+  ViewOutput output_{programs_, caps_};
   gl::FrameTimer timer_;
-  View view_;
   float inverse_far_ = 0.0f;
   std::string gl_error_;
 };

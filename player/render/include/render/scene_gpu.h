@@ -40,6 +40,8 @@ class SceneGpu {
   const std::vector<gl::Texture>& textures() const { return textures_; }
   const std::vector<scene::Material>& materials() const { return materials_; }
   const std::vector<Draw>& draws() const { return draws_; }  // untextured first, then textured
+  // The scene's world-space box, known once ready().
+  const scene::Bounds& bounds() const { return bounds_; }
   double radius() const { return radius_; }
   glm::dvec3 centre() const { return centre_; }
   size_t bytes() const { return bytes_; }  // uploaded so far
@@ -57,6 +59,7 @@ class SceneGpu {
   std::vector<gl::Texture> textures_;
   std::vector<scene::Material> materials_;
   std::vector<Draw> draws_;
+  scene::Bounds bounds_;
   double radius_ = 1.0;
   glm::dvec3 centre_{0.0};
   size_t bytes_ = 0;

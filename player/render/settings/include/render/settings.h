@@ -15,10 +15,11 @@
 
 namespace render {
 
-// What the present pass shows: the shaded image, or a debug output.
-enum class Output { color, ao, normal, depth };
-inline constexpr names::Named<Output> kOutputNames[] = {
-    {Output::color, "color"}, {Output::ao, "ao"}, {Output::normal, "normal"}, {Output::depth, "depth"}};
+// The picture the present pass makes (setting `output`): the shaded image, or a debug view of the
+// AO, the normals or the depth. Not to be confused with render::Output, where frames go.
+enum class Picture { color, ao, normal, depth };
+inline constexpr names::Named<Picture> kPictureNames[] = {
+    {Picture::color, "color"}, {Picture::ao, "ao"}, {Picture::normal, "normal"}, {Picture::depth, "depth"}};
 
 // The depth prepass pays only where overdraw is high enough that shading fragments twice costs more
 // than drawing the geometry twice; `automatic` measures both on the first two frames and keeps the faster.
@@ -26,7 +27,7 @@ enum class Prepass { off, on, automatic };
 inline constexpr names::Named<Prepass> kPrepassNames[] = {
     {Prepass::on, "on"}, {Prepass::off, "off"}, {Prepass::automatic, "auto"}};
 
-std::string_view name(Output output);
+std::string_view name(Picture output);
 std::string_view name(Prepass prepass);
 
 struct FrameSettings {
@@ -35,7 +36,7 @@ struct FrameSettings {
   ssao::AoSettings ao_settings;
   ssao::BlurSettings blur;
   float radius = 0.0f;        // base AO radius in world units; 0: a tenth of the scene's bounding radius
-  Output output = Output::color;
+  Picture output = Picture::color;
   Prepass prepass = Prepass::automatic;
   bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
   // Temporal accumulation: each frame turns its AO samples anew and averages them with the previous

@@ -1,0 +1,58 @@
+#pragma once
+// One GL context and what belongs to it: the platform that made it, its entry points, what it can
+// do, the debug log and the programs compiled in it. Every command, the GL tests and the tools open
+// one the same way; when it goes, its programs go first, while their context still exists.
+#include "gl/caps.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "platform/platform.h"
+
+#include <cstddef>
+#include <functional>
+#include <initializer_list>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace gl {
+
+// Programs compiled once per context and shared by everything drawn in it: two renderers, or a
+// renderer and a light field output, that ask for the same stages and defines get the same program.
+class ProgramCache {
+ public:
+  // The program of `stages` with `defines` (whole "#define NAME VALUE\n" lines), compiled on the first
+  // request. Null on failure, with the file, the variant and the driver's log in `error`; a failed
+  // variant is not kept, so a later request reports the same error again.
+  const Program* get(std::initializer_list<Stage> stages, const std::string& defines, std::string& error);
+  // How many programs were compiled and linked in this context (a request answered from the cache
+  // compiles nothing).
+  std::size_t compiled() const { return compiled_; }
+
+ private:
+  std::size_t compiled_ = 0;
+  // Pointers handed out stay valid: map nodes do not move.
+  std::map<std::string, Program, std::less<>> programs_;
+};
+
+class Session {
+ public:
+  // platform::create, the entry points, the caps, and KHR_debug messages to stderr (always in debug
+  // builds; in release builds only with `debug_log`). Null and why.
+  static std::unique_ptr<Session> open(const platform::Options& options, std::string& error, bool debug_log = false);
+
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  platform::Platform& platform() { return *platform_; }
+  const platform::Platform& platform() const { return *platform_; }
+  const Caps& caps() const { return caps_; }
+  ProgramCache& programs() { return programs_; }
+
+ private:
+  Session() = default;
+  std::unique_ptr<platform::Platform> platform_;
+  Caps caps_;
+  ProgramCache programs_;  // after platform_: destroyed before the context is
+};
+
+}  // namespace gl

@@ -1,0 +1,16 @@
+#include "render/output.h"
+
+namespace render {
+
+bool ViewOutput::configure(const FrameSettings& settings, const SceneGpu& scene, bool srgb_target, std::string& error) {
+  adjustment_.clear();
+  return targets_.configure(programs_, caps_, settings, scene.radius(), srgb_target, error);
+}
+
+void ViewOutput::render(const OutputFrame& frame) { draw_view(context(frame)); }
+
+void ViewOutput::present(const OutputFrame& frame, const PresentTarget& target, int, int) {
+  present_pass(context(frame), target, frame.fade);
+}
+
+}  // namespace render

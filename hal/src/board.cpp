@@ -1,8 +1,8 @@
 #include "hal/board.h"
 
+#include <toml++/toml.h>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "base/names.h"
 
@@ -16,13 +16,13 @@ std::string GpioLine::describe() const {
 
 namespace {
 
-constexpr base::Name<Action> kActionNames[] = {{Action::none, "none"},       {Action::next, "next"},   {Action::previous, "previous"},
-                                              {Action::pause, "pause"},     {Action::ao, "ao"},       {Action::output, "output"},
-                                              {Action::restart, "restart"}, {Action::check, "check"}};
+constexpr base::Name<Action> kActionNames[] = {
+    {Action::none, "none"}, {Action::next, "next"},     {Action::previous, "previous"}, {Action::pause, "pause"},
+    {Action::ao, "ao"},     {Action::output, "output"}, {Action::restart, "restart"},   {Action::check, "check"}};
 static_assert(base::in_enum_order(kActionNames));
 
 constexpr base::Name<Bias> kBiasNames[] = {
-    {Bias::AsIs, "as-is"}, {Bias::Disable, "disable"}, {Bias::PullUp, "pull-up"}, {Bias::PullDown, "pull-down"}};
+    {Bias::as_is, "as-is"}, {Bias::disable, "disable"}, {Bias::pull_up, "pull-up"}, {Bias::pull_down, "pull-down"}};
 static_assert(base::in_enum_order(kBiasNames));
 
 struct ButtonDefault {
@@ -37,15 +37,21 @@ constexpr ButtonDefault kButtonDefaults[] = {{"play", Action::pause, Action::res
 
 }  // namespace
 
-std::string_view to_string(Action a) { return base::name_of(kActionNames, a); }
-bool parse_action(std::string_view text, Action& out) { return base::parse_name(kActionNames, text, out); }
-std::string action_names() { return base::names_text(kActionNames); }
+std::string_view to_string(Action a) {
+  return base::name_of(kActionNames, a);
+}
+bool parse_action(std::string_view text, Action& out) {
+  return base::parse_name(kActionNames, text, out);
+}
+std::string action_names() {
+  return base::names_text(kActionNames);
+}
 
 namespace {
 
 // Typed field access whose errors name the file, the field and what was expected.
 class Fields {
-public:
+ public:
   Fields(const toml::table& t, std::string source, std::string prefix)
       : t_(t), source_(std::move(source)), prefix_(std::move(prefix)) {}
 
@@ -73,8 +79,7 @@ public:
     // as_integer, not value<long long>: toml++ converts a float such as 1e280 to an integer
     // without a range check (undefined behaviour, found by tests/fuzz).
     const toml::value<int64_t>* v = n->as_integer();
-    if (!v || v->get() < lo || v->get() > hi)
-      fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    if (!v || v->get() < lo || v->get() > hi) fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
     return v->get();
   }
   bool boolean(const std::string& key, bool fallback) const {
@@ -86,7 +91,7 @@ public:
   const std::string& source() const { return source_; }
   const std::string& prefix() const { return prefix_; }
 
-private:
+ private:
   const toml::table& t_;
   std::string source_, prefix_;
 };
@@ -96,8 +101,7 @@ GpioLine read_line(const Fields& f) {
   l.line_name = f.str("line", "");
   l.chip = f.str("chip", "");
   l.offset = static_cast<int>(f.integer("offset", -1, 0, 1023));
-  if (l.line_name.empty() && (l.chip.empty() || l.offset < 0))
-    f.fail("line", "a line name, or 'chip' and 'offset'");
+  if (l.line_name.empty() && (l.chip.empty() || l.offset < 0)) f.fail("line", "a line name, or 'chip' and 'offset'");
   l.active_low = f.boolean("active_low", false);
   if (!base::parse_name(kBiasNames, f.str("bias", "as-is"), l.bias)) f.fail("bias", "one of " + base::names_text(kBiasNames));
   return l;
@@ -106,9 +110,12 @@ GpioLine read_line(const Fields& f) {
 ButtonTiming read_timing(const Fields& f, ButtonTiming t) {
   using std::chrono::milliseconds;
   t.debounce = milliseconds(f.integer("debounce_ms", std::chrono::duration_cast<milliseconds>(t.debounce).count(), 0, 1000));
-  t.long_press = milliseconds(f.integer("long_press_ms", std::chrono::duration_cast<milliseconds>(t.long_press).count(), 0, 60000));
-  t.repeat_delay = milliseconds(f.integer("repeat_delay_ms", std::chrono::duration_cast<milliseconds>(t.repeat_delay).count(), 0, 60000));
-  t.repeat_interval = milliseconds(f.integer("repeat_interval_ms", std::chrono::duration_cast<milliseconds>(t.repeat_interval).count(), 10, 60000));
+  t.long_press =
+      milliseconds(f.integer("long_press_ms", std::chrono::duration_cast<milliseconds>(t.long_press).count(), 0, 60000));
+  t.repeat_delay =
+      milliseconds(f.integer("repeat_delay_ms", std::chrono::duration_cast<milliseconds>(t.repeat_delay).count(), 0, 60000));
+  t.repeat_interval = milliseconds(
+      f.integer("repeat_interval_ms", std::chrono::duration_cast<milliseconds>(t.repeat_interval).count(), 10, 60000));
   return t;
 }
 
@@ -170,7 +177,8 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
           c.long_action = d.long_action;
           c.key = d.key;
         }
-      if (!parse_action(f.str("action", std::string(to_string(c.action))), c.action)) f.fail("action", "one of " + action_names());
+      if (!parse_action(f.str("action", std::string(to_string(c.action))), c.action))
+        f.fail("action", "one of " + action_names());
       if (!parse_action(f.str("long_press_action", std::string(to_string(c.long_action))), c.long_action))
         f.fail("long_press_action", "one of " + action_names());
       c.key = f.str("key", c.key);
@@ -243,7 +251,9 @@ line = "GPIO24"
 device = "/dev/v4l/by-id/mock-camera"
 )";
 
-BoardConfig builtin_mock_board() { return parse_board(kBuiltinBoardText, "<built-in board>"); }
+BoardConfig builtin_mock_board() {
+  return parse_board(kBuiltinBoardText, "<built-in board>");
+}
 
 BoardConfig load_board(const std::string& path) {
   std::ifstream in(path);

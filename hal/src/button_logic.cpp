@@ -9,14 +9,16 @@
 namespace hal {
 
 namespace {
-constexpr base::Name<ButtonAction> kButtonActionNames[] = {{ButtonAction::Press, "press"},
-                                                          {ButtonAction::Release, "release"},
-                                                          {ButtonAction::LongPress, "long-press"},
-                                                          {ButtonAction::Repeat, "repeat"}};
+constexpr base::Name<ButtonAction> kButtonActionNames[] = {{ButtonAction::press, "press"},
+                                                           {ButtonAction::release, "release"},
+                                                           {ButtonAction::long_press, "long-press"},
+                                                           {ButtonAction::repeat, "repeat"}};
 static_assert(base::in_enum_order(kButtonActionNames));
 }  // namespace
 
-std::string_view to_string(ButtonAction a) { return base::name_of(kButtonActionNames, a); }
+std::string_view to_string(ButtonAction a) {
+  return base::name_of(kButtonActionNames, a);
+}
 
 namespace detail {
 
@@ -72,20 +74,20 @@ void ButtonLogic::fire(std::size_t button, State& s) {
       s.pressed_at = s.raw_since;
       s.long_sent = false;
       s.next_repeat = s.timing.repeat_delay.count() > 0 ? s.pressed_at + s.timing.repeat_delay : Nanos::max();
-      push(button, ButtonAction::Press, s.raw_since);
+      push(button, ButtonAction::press, s.raw_since);
     } else {
       s.next_repeat = Nanos::max();
-      push(button, ButtonAction::Release, s.raw_since);
+      push(button, ButtonAction::release, s.raw_since);
     }
     return;
   }
   const Nanos long_at = s.pressed_at + s.timing.long_press;
   if (!s.long_sent && s.timing.long_press.count() > 0 && long_at <= s.next_repeat) {
     s.long_sent = true;
-    push(button, ButtonAction::LongPress, long_at);
+    push(button, ButtonAction::long_press, long_at);
     return;
   }
-  push(button, ButtonAction::Repeat, s.next_repeat);
+  push(button, ButtonAction::repeat, s.next_repeat);
   s.next_repeat += std::max(s.timing.repeat_interval, Nanos(std::chrono::milliseconds(1)));
 }
 
@@ -127,14 +129,18 @@ void ButtonLogic::evict_one() {
   for (std::size_t i = size_; i-- > 0;) {
     const ButtonEvent& e = at(i);
     switch (e.action) {
-      case ButtonAction::Repeat: repeat = i; break;
-      case ButtonAction::LongPress: long_press = i; break;
-      case ButtonAction::Press:
+      case ButtonAction::repeat:
+        repeat = i;
+        break;
+      case ButtonAction::long_press:
+        long_press = i;
+        break;
+      case ButtonAction::press:
         if (next_is_release[e.button]) click = i;
         press = i;
         next_is_release[e.button] = false;
         break;
-      case ButtonAction::Release:
+      case ButtonAction::release:
         if (next_is_release[e.button]) repeated_release = i;
         next_is_release[e.button] = true;
         break;

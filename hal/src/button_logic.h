@@ -10,7 +10,7 @@
 namespace hal::detail {
 
 class ButtonLogic {
-public:
+ public:
   // At most kMaxButtons buttons (ButtonEvent::button is 8 bits); throws std::invalid_argument otherwise.
   explicit ButtonLogic(std::vector<ButtonTiming> timing);
   static constexpr std::size_t kMaxButtons = 255;
@@ -26,7 +26,7 @@ public:
   std::size_t drain(std::span<ButtonEvent> out);
   std::size_t dropped() const { return dropped_; }
 
-private:
+ private:
   struct State {
     ButtonTiming timing;
     bool raw = false;

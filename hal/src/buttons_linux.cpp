@@ -39,8 +39,10 @@ void EdgeButtons::line_level(std::size_t button, bool pressed, Nanos time) {
 
 void EdgeButtons::key(std::size_t button, bool pressed, Nanos time) {
   const bool was_down = line_down_[button] || keys_down_[button] > 0;
-  if (pressed) ++keys_down_[button];
-  else if (keys_down_[button] > 0) --keys_down_[button];
+  if (pressed)
+    ++keys_down_[button];
+  else if (keys_down_[button] > 0)
+    --keys_down_[button];
   const bool down = line_down_[button] || keys_down_[button] > 0;
   if (down != was_down) logic_.edge(button, down, time);
 }
@@ -92,13 +94,13 @@ void EdgeButtons::fail(Line& l, int err) {
 namespace {
 
 class GpioButtons final : public detail::EdgeButtons {
-public:
+ public:
   GpioButtons(const std::vector<ButtonConfig>& buttons, const std::string& consumer, const Clock& clock,
               std::vector<std::string>& problems)
       : EdgeButtons(names(buttons), timings(buttons), clock) {
     for (std::size_t i = 0; i < buttons.size(); ++i) {
       std::string error;
-      detail::RequestedLine l = detail::request_line(buttons[i].line, detail::LineUse::BothEdges, consumer, &error);
+      detail::RequestedLine l = detail::request_line(buttons[i].line, detail::LineUse::both_edges, consumer, &error);
       if (!l.line) {
         problems.push_back("button '" + buttons[i].name + "': " + error);
         continue;
@@ -109,7 +111,7 @@ public:
     }
   }
 
-private:
+ private:
   static std::vector<std::string> names(const std::vector<ButtonConfig>& b) {
     std::vector<std::string> n;
     for (const auto& c : b) n.push_back(c.name);

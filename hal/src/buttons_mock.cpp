@@ -34,8 +34,9 @@ std::vector<ScriptStep> parse_button_script(const std::string& text, const std::
     if (ms > kMaxScriptMs)
       throw ConfigError(where + "time: expected at most " + std::to_string(kMaxScriptMs) + " milliseconds (100 years), got " +
                         ms_text);
-    if (ms < last_ms) throw ConfigError(where + "time: expected times that do not decrease, got " + ms_text +
-                                        " after " + std::to_string(last_ms));
+    if (ms < last_ms)
+      throw ConfigError(where + "time: expected times that do not decrease, got " + ms_text + " after " +
+                        std::to_string(last_ms));
     if (!(fields >> name)) throw ConfigError(where + "button: expected a button name after the time");
     if (!(fields >> action) || (action != "press" && action != "release"))
       throw ConfigError(where + "action: expected 'press' or 'release', got '" + action + "'");
@@ -86,11 +87,19 @@ struct MockButtons::Impl {
 MockButtons::MockButtons(std::vector<MockButtonSpec> buttons, std::vector<ScriptStep> script, const Clock& clock)
     : impl_(std::make_unique<Impl>(std::move(buttons), std::move(script), clock)) {}
 MockButtons::~MockButtons() = default;
-int MockButtons::fd() const { return impl_->timer.get(); }
-std::size_t MockButtons::count() const { return impl_->names.size(); }
-std::string_view MockButtons::name(std::size_t button) const { return impl_->names[button]; }
+int MockButtons::fd() const {
+  return impl_->timer.get();
+}
+std::size_t MockButtons::count() const {
+  return impl_->names.size();
+}
+std::string_view MockButtons::name(std::size_t button) const {
+  return impl_->names[button];
+}
 
-std::size_t MockButtons::dropped() const { return impl_->logic.dropped(); }
+std::size_t MockButtons::dropped() const {
+  return impl_->logic.dropped();
+}
 
 const std::string& MockButtons::last_error() const {
   static const std::string none;

@@ -13,17 +13,25 @@ namespace hal {
 
 namespace {
 constexpr base::Name<CameraState> kCameraStateNames[] = {
-    {CameraState::Closed, "closed"}, {CameraState::Streaming, "streaming"}, {CameraState::Lost, "lost"}};
+    {CameraState::closed, "closed"}, {CameraState::streaming, "streaming"}, {CameraState::lost, "lost"}};
 static_assert(base::in_enum_order(kCameraStateNames));
 constexpr base::Name<PixelFormat> kPixelFormatNames[] = {
-    {PixelFormat::Auto, "auto"}, {PixelFormat::Mjpeg, "mjpeg"}, {PixelFormat::Yuyv, "yuyv"}, {PixelFormat::Rgb24, "rgb24"}};
+    {PixelFormat::automatic, "auto"}, {PixelFormat::mjpeg, "mjpeg"}, {PixelFormat::yuyv, "yuyv"}, {PixelFormat::rgb24, "rgb24"}};
 static_assert(base::in_enum_order(kPixelFormatNames));
 }  // namespace
 
-std::string_view to_string(CameraState s) { return base::name_of(kCameraStateNames, s); }
-std::string_view to_string(PixelFormat f) { return base::name_of(kPixelFormatNames, f); }
-bool parse_pixel_format(std::string_view text, PixelFormat& out) { return base::parse_name(kPixelFormatNames, text, out); }
-std::string pixel_format_names() { return base::names_text(kPixelFormatNames); }
+std::string_view to_string(CameraState s) {
+  return base::name_of(kCameraStateNames, s);
+}
+std::string_view to_string(PixelFormat f) {
+  return base::name_of(kPixelFormatNames, f);
+}
+bool parse_pixel_format(std::string_view text, PixelFormat& out) {
+  return base::parse_name(kPixelFormatNames, text, out);
+}
+std::string pixel_format_names() {
+  return base::names_text(kPixelFormatNames);
+}
 
 bool Camera::capture(RgbImage& out, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
@@ -37,8 +45,7 @@ bool Camera::capture(RgbImage& out, std::chrono::milliseconds timeout) {
   }
 }
 
-std::array<double, 9> homography_for_corners(int display_w, int display_h,
-                                             const std::array<std::array<double, 2>, 4>& corners) {
+std::array<double, 9> homography_for_corners(int display_w, int display_h, const std::array<std::array<double, 2>, 4>& corners) {
   // Pixel centres at integers, so the screen's outer edges are at -0.5 and size - 0.5.
   const double l = -0.5, t = -0.5, r = display_w - 0.5, b = display_h - 0.5;
   const detail::Point src[4] = {{l, t}, {r, t}, {r, b}, {l, b}};
@@ -154,8 +161,10 @@ RgbImage make_test_scene(int width, int height, int scene, double t) {
         const double depth = (height - horizon) / (y - horizon + 1.0);
         // The floor scrolls with t as under a moving camera path.
         const double pan = t * width * 0.1;
-        const bool check = (static_cast<int>(std::floor((x - width / 2.0 + pan) * depth / 40.0)) +
-                            static_cast<int>(std::floor(depth * 4.0))) % 2 == 0;
+        const bool check =
+            (static_cast<int>(std::floor((x - width / 2.0 + pan) * depth / 40.0)) + static_cast<int>(std::floor(depth * 4.0))) %
+                2 ==
+            0;
         for (int i = 0; i < 3; ++i) c[i] = ground[i] * (check ? 1.0 : 0.6);
       }
       for (const Ball& b : balls) {
@@ -164,7 +173,8 @@ RgbImage make_test_scene(int width, int height, int scene, double t) {
         if (b.box ? (std::abs(dx) < 0.8 && std::abs(dy) < 0.8) : (dx * dx + dy * dy < 1)) {
           // Lambert shading from the upper left, with a rim darkening that looks like ambient occlusion.
           const double nz = b.box ? 0.8 : std::sqrt(std::max(0.0, 1 - dx * dx - dy * dy));
-          const double shade = b.box ? (dx < dy ? 0.9 : 0.6) : std::clamp(0.25 + 0.75 * (-0.5 * dx - 0.5 * dy + 0.7 * nz), 0.1, 1.0);
+          const double shade =
+              b.box ? (dx < dy ? 0.9 : 0.6) : std::clamp(0.25 + 0.75 * (-0.5 * dx - 0.5 * dy + 0.7 * nz), 0.1, 1.0);
           for (int i = 0; i < 3; ++i) c[i] = b.col[i] * shade;
         }
       }
@@ -188,18 +198,20 @@ MockCamera::MockCamera(const std::vector<std::string>& image_files, const Clock&
 MockCamera::MockCamera(CameraModel model, const Clock& clock, Nanos frame_interval)
     : model_(model), synthetic_(true), clock_(clock), interval_(frame_interval), timer_(detail::make_timer()) {}
 
-void MockCamera::arm(Nanos at) { detail::arm_timer(timer_.get(), at); }
+void MockCamera::arm(Nanos at) {
+  detail::arm_timer(timer_.get(), at);
+}
 
 void MockCamera::show(const RgbImage& displayed) {
   const bool first = displayed_.empty();
   displayed_ = displayed;
   // Until now there was nothing to film and the timer was idle; from now on frames come.
-  if (first && state_ == CameraState::Streaming) arm(next_frame_ = std::max(next_frame_, clock_.now()));
+  if (first && state_ == CameraState::streaming) arm(next_frame_ = std::max(next_frame_, clock_.now()));
 }
 
 void MockCamera::unplug() {
   plugged_ = false;
-  state_ = CameraState::Lost;
+  state_ = CameraState::lost;
   error_ = "mock camera: No such device (unplugged)";
   arm(clock_.now());  // wake the loop once, so it sees the state; read_frame()/service() disarm it
 }
@@ -209,23 +221,25 @@ void MockCamera::replug() {
   arm(clock_.now());  // a reopen is due: service() brings it back
 }
 
-int MockCamera::fd() const { return timer_.get(); }
+int MockCamera::fd() const {
+  return timer_.get();
+}
 
 void MockCamera::service() {
-  if (state_ != CameraState::Lost) return;
+  if (state_ != CameraState::lost) return;
   detail::drain(timer_.get());
   if (!plugged_) {
     arm(Nanos::max());  // nothing to retry until replug()
     return;
   }
-  state_ = CameraState::Streaming;
+  state_ = CameraState::streaming;
   error_.clear();
   next_frame_ = clock_.now();
   arm(has_source() ? next_frame_ : Nanos::max());
 }
 
 bool MockCamera::read_frame(RgbImage& out) {
-  if (state_ != CameraState::Streaming) return false;
+  if (state_ != CameraState::streaming) return false;
   // Draining before the check keeps fd() readable only while a frame is due: no spinning loop.
   detail::drain(timer_.get());
   const Nanos now = clock_.now();

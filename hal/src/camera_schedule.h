@@ -8,9 +8,8 @@
 namespace hal::detail {
 
 class CameraSchedule {
-public:
-  CameraSchedule(Nanos reopen_interval, Nanos frame_timeout)
-      : reopen_interval_(reopen_interval), frame_timeout_(frame_timeout) {}
+ public:
+  CameraSchedule(Nanos reopen_interval, Nanos frame_timeout) : reopen_interval_(reopen_interval), frame_timeout_(frame_timeout) {}
 
   // Streaming from `now`: the first frame must come within the frame timeout, as every later one.
   void opened(Nanos now) {
@@ -32,7 +31,7 @@ public:
   Nanos deadline() const { return streaming_ ? last_frame_ + frame_timeout_ : reopen_at_; }
   Nanos last_frame() const { return last_frame_; }
 
-private:
+ private:
   Nanos reopen_interval_;
   Nanos frame_timeout_;
   bool streaming_ = false;

@@ -8,8 +8,8 @@
 #include <cerrno>
 #include <cstring>
 
-#include "camera_schedule.h"
 #include "base/errno_text.h"
+#include "camera_schedule.h"
 #include "fd.h"
 #include "hal/convert.h"
 #include "hal/devices.h"
@@ -33,10 +33,14 @@ using Mapping = std::unique_ptr<void, Unmap>;
 
 std::uint32_t fourcc(PixelFormat f) {
   switch (f) {
-    case PixelFormat::Mjpeg: return V4L2_PIX_FMT_MJPEG;
-    case PixelFormat::Yuyv: return V4L2_PIX_FMT_YUYV;
-    case PixelFormat::Rgb24: return V4L2_PIX_FMT_RGB24;
-    case PixelFormat::Auto: return 0;
+    case PixelFormat::mjpeg:
+      return V4L2_PIX_FMT_MJPEG;
+    case PixelFormat::yuyv:
+      return V4L2_PIX_FMT_YUYV;
+    case PixelFormat::rgb24:
+      return V4L2_PIX_FMT_RGB24;
+    case PixelFormat::automatic:
+      return 0;
   }
   return 0;
 }
@@ -47,7 +51,7 @@ std::string fourcc_text(std::uint32_t f) {
 }
 
 class V4l2Camera final : public Camera {
-public:
+ public:
   V4l2Camera(const CameraConfig& config, const Clock& clock)
       : config_(config),
         clock_(clock),
@@ -56,8 +60,10 @@ public:
         timer_(detail::make_timer()) {
     // One timer for both deadlines: the reopen while lost, the no-frame check while streaming.
     detail::epoll_watch(epoll_.get(), timer_.get());
-    if (open_device()) schedule_.opened(clock_.now());
-    else lose();
+    if (open_device())
+      schedule_.opened(clock_.now());
+    else
+      lose();
     arm();
   }
   ~V4l2Camera() override { teardown(); }
@@ -71,13 +77,13 @@ public:
     // wakes the loop and is re-armed from the schedule every time.
     detail::drain(timer_.get());
     const Nanos now = clock_.now();
-    if (state_ == CameraState::Streaming && schedule_.stalled(now)) {
+    if (state_ == CameraState::streaming && schedule_.stalled(now)) {
       const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now - schedule_.last_frame()).count();
-      error_ = config_.device + ": no usable frame for " + std::to_string(ms) + " ms (camera.frame_timeout_ms = " +
-               std::to_string(config_.frame_timeout.count()) + ")" + (error_.empty() ? "" : "; last error: " + error_) +
-               "; reopening";
+      error_ = config_.device + ": no usable frame for " + std::to_string(ms) +
+               " ms (camera.frame_timeout_ms = " + std::to_string(config_.frame_timeout.count()) + ")" +
+               (error_.empty() ? "" : "; last error: " + error_) + "; reopening";
       lose();
-    } else if (state_ == CameraState::Lost && schedule_.reopen_due(now)) {
+    } else if (state_ == CameraState::lost && schedule_.reopen_due(now)) {
       if (open_device()) {
         error_.clear();
         schedule_.opened(now);
@@ -89,7 +95,7 @@ public:
   }
 
   bool read_frame(RgbImage& out) override {
-    if (state_ != CameraState::Streaming) return false;
+    if (state_ != CameraState::streaming) return false;
     v4l2_buffer buf{};
     buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     buf.memory = V4L2_MEMORY_MMAP;
@@ -104,9 +110,12 @@ public:
       error_ = config_.device + ": frame " + std::to_string(buf.sequence) + ": " + what;
     };
     bool ok = false;
-    if (buf.flags & V4L2_BUF_FLAG_ERROR) frame_error("the driver flagged it as corrupt");
-    else if (buf.index >= buffers_.size()) frame_error("buffer index " + std::to_string(buf.index) + " out of range");
-    else ok = true;
+    if (buf.flags & V4L2_BUF_FLAG_ERROR)
+      frame_error("the driver flagged it as corrupt");
+    else if (buf.index >= buffers_.size())
+      frame_error("buffer index " + std::to_string(buf.index) + " out of range");
+    else
+      ok = true;
     if (ok) {
       const auto* data = static_cast<const std::uint8_t*>(buffers_[buf.index].get());
       const std::span<const std::uint8_t> bytes(data, buf.bytesused);
@@ -122,11 +131,10 @@ public:
             yuyv_to_rgb(bytes, width_, height_, stride_, out);
           } else {
             const auto row = static_cast<std::size_t>(width_) * 3;
-            for (int y = 0; y < height_; ++y)
-              std::memcpy(out.at(0, y), data + static_cast<std::size_t>(y) * stride_, row);
+            for (int y = 0; y < height_; ++y) std::memcpy(out.at(0, y), data + static_cast<std::size_t>(y) * stride_, row);
           }
           break;
-        default: {  // MJPEG
+        default: {          // MJPEG
           std::string why;  // written only on failure
           ok = mjpeg_.decode(bytes, out, &why);
           if (!ok) frame_error(why);
@@ -144,7 +152,7 @@ public:
     return ok;
   }
 
-private:
+ private:
   bool open_device() {
     const std::string& path = config_.device;
     dev_.reset(::open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC));
@@ -158,8 +166,8 @@ private:
       return set_error(path + ": capabilities: expected VIDEO_CAPTURE (a metadata or output node was given?)");
     if (!(caps & V4L2_CAP_STREAMING)) return set_error(path + ": capabilities: expected STREAMING (mmap I/O)");
 
-    const PixelFormat order[] = {config_.format == PixelFormat::Auto ? PixelFormat::Mjpeg : config_.format,
-                                 config_.format == PixelFormat::Auto ? PixelFormat::Yuyv : config_.format};
+    const PixelFormat order[] = {config_.format == PixelFormat::automatic ? PixelFormat::mjpeg : config_.format,
+                                 config_.format == PixelFormat::automatic ? PixelFormat::yuyv : config_.format};
     v4l2_format fmt{};
     bool accepted = false;
     for (PixelFormat want : order) {
@@ -169,8 +177,7 @@ private:
       fmt.fmt.pix.height = static_cast<std::uint32_t>(config_.height);
       fmt.fmt.pix.pixelformat = fourcc(want);
       fmt.fmt.pix.field = V4L2_FIELD_NONE;
-      if (xioctl(dev_.get(), VIDIOC_S_FMT, &fmt) != 0)
-        return set_error(path + ": VIDIOC_S_FMT: " + base::errno_text(errno));
+      if (xioctl(dev_.get(), VIDIOC_S_FMT, &fmt) != 0) return set_error(path + ": VIDIOC_S_FMT: " + base::errno_text(errno));
       // Drivers substitute what they support; only take a format we can convert.
       if (fmt.fmt.pix.pixelformat == fourcc(want)) {
         accepted = true;
@@ -191,8 +198,8 @@ private:
     req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     req.memory = V4L2_MEMORY_MMAP;
     if (xioctl(dev_.get(), VIDIOC_REQBUFS, &req) != 0)
-      return set_error(path + ": VIDIOC_REQBUFS (" + std::to_string(config_.buffers) + " mmap buffers): " +
-                       base::errno_text(errno));
+      return set_error(path + ": VIDIOC_REQBUFS (" + std::to_string(config_.buffers) +
+                       " mmap buffers): " + base::errno_text(errno));
     if (req.count < 2)
       return set_error(path + ": VIDIOC_REQBUFS: expected at least 2 mmap buffers, the driver granted " +
                        std::to_string(req.count));
@@ -210,11 +217,10 @@ private:
         return set_error(path + ": VIDIOC_QBUF " + std::to_string(i) + ": " + base::errno_text(errno));
     }
     v4l2_buf_type type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    if (xioctl(dev_.get(), VIDIOC_STREAMON, &type) != 0)
-      return set_error(path + ": VIDIOC_STREAMON: " + base::errno_text(errno));
+    if (xioctl(dev_.get(), VIDIOC_STREAMON, &type) != 0) return set_error(path + ": VIDIOC_STREAMON: " + base::errno_text(errno));
     streaming_ = true;
     detail::epoll_watch(epoll_.get(), dev_.get());
-    state_ = CameraState::Streaming;
+    state_ = CameraState::streaming;
     return true;
   }
 
@@ -226,14 +232,14 @@ private:
 
   // ENODEV (unplugged) and other stream errors: drop everything and retry later; never wait on it.
   void fail(const char* what, int err) {
-    error_ = config_.device + ": " + what + ": " + base::errno_text(err) +
-             (err == ENODEV ? " (camera unplugged?); retrying" : "");
+    error_ =
+        config_.device + ": " + what + ": " + base::errno_text(err) + (err == ENODEV ? " (camera unplugged?); retrying" : "");
     lose();
   }
 
   void lose() {
     teardown();
-    state_ = CameraState::Lost;
+    state_ = CameraState::lost;
     schedule_.lost(clock_.now());
     arm();
   }
@@ -251,7 +257,7 @@ private:
     streaming_ = false;
     buffers_.clear();  // unmapped before the fd closes, then the driver frees them with the fd
     dev_.reset();
-    state_ = CameraState::Closed;
+    state_ = CameraState::closed;
   }
 
   CameraConfig config_;
@@ -265,7 +271,7 @@ private:
   std::uint32_t pixfmt_ = 0;
   int width_ = 0, height_ = 0, stride_ = 0;
   MjpegDecoder mjpeg_;
-  CameraState state_ = CameraState::Closed;
+  CameraState state_ = CameraState::closed;
   std::string error_;
 };
 

@@ -10,7 +10,9 @@ namespace hal {
 
 namespace {
 
-std::uint8_t clamp8(int v) { return static_cast<std::uint8_t>(std::clamp(v, 0, 255)); }
+std::uint8_t clamp8(int v) {
+  return static_cast<std::uint8_t>(std::clamp(v, 0, 255));
+}
 
 // BT.601 limited range in 8.8 fixed point: R = 1.164(Y-16) + 1.596(V-128), etc.
 void yuv_to_rgb(int y, int u, int v, std::uint8_t* rgb) {
@@ -45,7 +47,7 @@ bool jpeg_frame(std::span<const std::uint8_t> jpeg, JpegFrame& frame, std::strin
     }
     i += 2;
     if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
-    if (marker == 0xD9 || marker == 0xDA) break;  // end of image, start of scan: no frame header came
+    if (marker == 0xD9 || marker == 0xDA) break;                         // end of image, start of scan: no frame header came
     if (i + 2 > jpeg.size()) break;
     const std::size_t length = static_cast<std::size_t>(jpeg[i] << 8 | jpeg[i + 1]);
     if (length < 2 || i + length > jpeg.size()) {
@@ -83,8 +85,10 @@ void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int s
     // An odd width leaves a last pixel with only its Y and U inside the row (width * 2 bytes may be
     // all the stride there is): it takes its left neighbour's chroma, or none in a 1-pixel row.
     if (width % 2 == 1) {
-      if (width > 1) yuv_to_rgb(row[0], row[-3], row[-1], dst);
-      else yuv_to_rgb(row[0], 128, 128, dst);
+      if (width > 1)
+        yuv_to_rgb(row[0], row[-3], row[-1], dst);
+      else
+        yuv_to_rgb(row[0], 128, 128, dst);
     }
   }
 }
@@ -137,8 +141,8 @@ bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std
   } else if (opened) {
     // Grey JPEGs come through as one channel: read it, then replicate in place from the back.
     const int channels = std::min(spec.nchannels, 3);
-    ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out.pixels.data(),
-                        static_cast<OIIO::stride_t>(3), OIIO::AutoStride, OIIO::AutoStride);
+    ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out.pixels.data(), static_cast<OIIO::stride_t>(3),
+                        OIIO::AutoStride, OIIO::AutoStride);
     if (ok && channels == 1) {
       for (std::size_t i = static_cast<std::size_t>(out.width) * out.height; i-- > 0;) {
         const std::uint8_t v = out.pixels[i * 3];

@@ -9,13 +9,19 @@
 namespace hal {
 
 namespace {
-constexpr base::Name<Backend> kBackendNames[] = {{Backend::Linux, "linux"}, {Backend::Mock, "mock"}};
+constexpr base::Name<Backend> kBackendNames[] = {{Backend::linux_kernel, "linux"}, {Backend::mock, "mock"}};
 static_assert(base::in_enum_order(kBackendNames));
 }  // namespace
 
-bool parse_backend(std::string_view text, Backend& out) { return base::parse_name(kBackendNames, text, out); }
-std::string_view to_string(Backend backend) { return base::name_of(kBackendNames, backend); }
-std::vector<std::string> backend_names() { return base::names_of(kBackendNames); }
+bool parse_backend(std::string_view text, Backend& out) {
+  return base::parse_name(kBackendNames, text, out);
+}
+std::string_view to_string(Backend backend) {
+  return base::name_of(kBackendNames, backend);
+}
+std::vector<std::string> backend_names() {
+  return base::names_of(kBackendNames);
+}
 
 CameraModel typical_camera_model() {
   CameraModel m;
@@ -33,13 +39,13 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
   std::vector<std::string> led_names;
   for (const auto& l : board.leds) led_names.push_back(l.name);
 
-  if (backend == Backend::Linux) {
+  if (backend == Backend::linux_kernel) {
     d.buttons = open_linux_buttons(board.buttons, board.consumer, clock, d.problems);
-    d.status = std::make_unique<Status>(led_names, open_gpio_leds(board.leds, board.consumer, d.problems), clock,
-                                        board.status_file);
+    d.status =
+        std::make_unique<Status>(led_names, open_gpio_leds(board.leds, board.consumer, d.problems), clock, board.status_file);
     if (board.camera) {
       d.camera = open_v4l2_camera(*board.camera, clock);
-      if (d.camera->state() != CameraState::Streaming) d.problems.push_back("camera: " + d.camera->last_error());
+      if (d.camera->state() != CameraState::streaming) d.problems.push_back("camera: " + d.camera->last_error());
     }
     return d;
   }
@@ -57,8 +63,8 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
   auto buttons = std::make_unique<MockButtons>(std::move(specs), std::move(script), clock);
   d.mock_buttons = buttons.get();
   d.buttons = std::move(buttons);
-  d.status = std::make_unique<Status>(led_names, std::make_unique<RecordingLedSink>(clock, led_names.size()), clock,
-                                      board.status_file);
+  d.status =
+      std::make_unique<Status>(led_names, std::make_unique<RecordingLedSink>(clock, led_names.size()), clock, board.status_file);
   std::unique_ptr<MockCamera> camera;
   if (!board.mock_camera_images.empty()) {
     camera = std::make_unique<MockCamera>(board.mock_camera_images, clock);

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "base/unique_fd.h"
 #include "button_logic.h"
-#include "keyboards_evdev.h"
 #include "hal/buttons.h"
 #include "hal/status.h"
-#include "base/unique_fd.h"
+#include "keyboards_evdev.h"
 
 namespace hal::detail {
 
@@ -22,7 +22,7 @@ namespace hal::detail {
 // Keyboard keys (Keyboards) can press the same buttons: a button is down while its line is active
 // or any of its keys is held, and the debounce logic sees the edges of that combined level.
 class EdgeButtons : public Buttons, private KeySink {
-public:
+ public:
   EdgeButtons(std::vector<std::string> names, std::vector<ButtonTiming> timing, const Clock& clock);
   // Watches `fd` (owned by the caller, made non-blocking here) for `button`'s edges; `pressed` is its
   // level now, `line` names it in errors ("line GPIO17").
@@ -39,7 +39,7 @@ public:
   std::size_t dropped() const override { return logic_.dropped(); }
   const std::string& last_error() const override { return error_; }
 
-private:
+ private:
   struct Line {
     std::size_t button;
     int fd;  // -1 once it failed
@@ -66,18 +66,18 @@ private:
 // not written again (every pattern edge would fail the same way), the failure is kept for
 // last_error() and the other LEDs run on.
 class OutputLeds : public LedSink {
-public:
+ public:
   // `labels[i]` names LED i in errors: "LED 'status' (line GPIO23)".
   explicit OutputLeds(std::vector<std::string> labels);
   void set(std::size_t led, bool on) final;
   const std::string& last_error() const final { return error_; }
 
-protected:
+ protected:
   void disable(std::size_t led) { live_[led] = false; }  // missing at start, reported by the opener
   // Drives one LED; returns 0, or the errno of the failed write.
   virtual int write(std::size_t led, bool on) = 0;
 
-private:
+ private:
   std::vector<std::string> labels_;
   std::vector<bool> live_;
   std::string error_;

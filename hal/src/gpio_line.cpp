@@ -37,19 +37,25 @@ RequestedLine request_line(const GpioLine& cfg, LineUse use, const std::string& 
   }
   int flags = cfg.active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
   switch (cfg.bias) {
-    case Bias::AsIs: break;
-    case Bias::Disable: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE; break;
-    case Bias::PullUp: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP; break;
-    case Bias::PullDown: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN; break;
+    case Bias::as_is:
+      break;
+    case Bias::disable:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
+      break;
+    case Bias::pull_up:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
+      break;
+    case Bias::pull_down:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
+      break;
   }
-  gpiod_line_request_config req{consumer.c_str(),
-                                use == LineUse::Output ? GPIOD_LINE_REQUEST_DIRECTION_OUTPUT
-                                                       : GPIOD_LINE_REQUEST_EVENT_BOTH_EDGES,
-                                flags};
+  gpiod_line_request_config req{
+      consumer.c_str(), use == LineUse::output ? GPIOD_LINE_REQUEST_DIRECTION_OUTPUT : GPIOD_LINE_REQUEST_EVENT_BOTH_EDGES,
+      flags};
   if (gpiod_line_request(line, &req, 0) != 0) {
     const char* user = gpiod_line_consumer(line);
     *error = "GPIO " + cfg.describe() + ": cannot request " +
-             (use == LineUse::Output ? std::string("as output") : std::string("for edge events")) + ": " +
+             (use == LineUse::output ? std::string("as output") : std::string("for edge events")) + ": " +
              base::errno_text(errno) + (user ? std::string(" (used by '") + user + "')" : std::string());
     return r;
   }

@@ -22,7 +22,7 @@ struct RequestedLine {
   std::unique_ptr<gpiod_line, LineRelease> line;
 };
 
-enum class LineUse { BothEdges, Output };
+enum class LineUse { both_edges, output };
 
 // Requests a line; on failure returns an empty line and sets *error to a message naming it.
 RequestedLine request_line(const GpioLine& cfg, LineUse use, const std::string& consumer, std::string* error);

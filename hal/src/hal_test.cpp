@@ -27,7 +27,9 @@ constexpr const char* kBuiltinScript = R"(
 1700 check release
 )";
 
-double seconds(Nanos t) { return std::chrono::duration<double>(t).count(); }
+double seconds(Nanos t) {
+  return std::chrono::duration<double>(t).count();
+}
 
 }  // namespace
 
@@ -35,7 +37,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
   Backend backend;
   std::string why;
   if (options.backend.empty()) {
-    backend = options.board_file.empty() ? Backend::Mock : Backend::Linux;
+    backend = options.board_file.empty() ? Backend::mock : Backend::linux_kernel;
     why = options.board_file.empty() ? "no --board: the built-in mock board"
                                      : "--board without --hal; --hal mock simulates the board";
   } else if (parse_backend(options.backend, backend)) {
@@ -52,7 +54,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
   try {
     board = options.board_file.empty() ? builtin_mock_board() : load_board(options.board_file);
     dev = open_devices(board, backend, clock);
-    if (options.board_file.empty() && backend == Backend::Mock) {
+    if (options.board_file.empty() && backend == Backend::mock) {
       std::vector<MockButtonSpec> specs;
       for (const auto& b : board.buttons) specs.push_back({b.name, b.timing});
       auto buttons = std::make_unique<MockButtons>(specs, parse_button_script(kBuiltinScript, "<built-in script>"), clock);
@@ -72,7 +74,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
 
   // Each step lights one LED in one pattern for a full period of the slowest pattern, so a slow
   // blink or a heartbeat is seen whole and each LED can be told from the others.
-  constexpr std::array kPatterns{LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat};
+  constexpr std::array kPatterns{LedPattern::on, LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat};
   Nanos step_len = std::chrono::milliseconds(500);
   for (LedPattern p : kPatterns)
     if (pattern_period(p) != Nanos::max()) step_len = std::max(step_len, pattern_period(p));
@@ -88,7 +90,7 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
     if (now >= next_step) {
       const std::size_t led = step % leds;
       const LedPattern p = kPatterns[(step / leds) % kPatterns.size()];
-      for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, i == led ? p : LedPattern::Off);
+      for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, i == led ? p : LedPattern::off);
       out << "[" << seconds(now - start) << " s] led " << dev.status->led_name(led) << " -> " << to_string(p) << "\n";
       ++step;
       next_step = now + step_len;
@@ -106,12 +108,11 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
             << to_string(events[i].action) << "\n";
     }
   }
-  for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, LedPattern::Off);
+  for (std::size_t i = 0; i < leds; ++i) dev.status->set_pattern(i, LedPattern::off);
   out << event_count << " button events\n";
   if (leds > 0 && step < steps) {
     const double needed = seconds(step_len) * static_cast<double>(steps);
-    out << "leds: showed " << step << " of " << steps << " LED patterns; --duration " << std::ceil(needed)
-        << " shows them all\n";
+    out << "leds: showed " << step << " of " << steps << " LED patterns; --duration " << std::ceil(needed) << " shows them all\n";
   }
 
   StatusReport report;
@@ -171,7 +172,8 @@ int run_hal_test(const HalTestOptions& options, std::ostream& out) {
   }
   if (!dev.status->status_file().empty()) {
     std::string err;
-    if (dev.status->write_report(report, &err)) out << "status file: " << dev.status->status_file() << "\n";
+    if (dev.status->write_report(report, &err))
+      out << "status file: " << dev.status->status_file() << "\n";
     else {
       out << "status file: " << err << "\n";
       ok = false;

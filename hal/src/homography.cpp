@@ -41,8 +41,7 @@ bool invert(const Mat3& m, Mat3& out) {
   const double A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
   const double det = a * A + b * B + c * C;
   if (std::abs(det) < 1e-12) return false;
-  out = {A / det, -(b * i - c * h) / det, (b * f - c * e) / det,
-         B / det, (a * i - c * g) / det,  -(a * f - c * d) / det,
+  out = {A / det, -(b * i - c * h) / det, (b * f - c * e) / det, B / det, (a * i - c * g) / det, -(a * f - c * d) / det,
          C / det, -(a * h - b * g) / det, (a * e - b * d) / det};
   return true;
 }

@@ -30,21 +30,45 @@ struct Alias {
   std::string_view evdev, board;
 };
 constexpr Alias kAliases[] = {
-    {"enter", "return"},         {"esc", "escape"},           {"minus", "-"},
-    {"equal", "="},              {"leftbrace", "["},          {"rightbrace", "]"},
-    {"semicolon", ";"},          {"apostrophe", "'"},         {"grave", "`"},
-    {"backslash", "\\"},         {"comma", ","},              {"dot", "."},
-    {"slash", "/"},              {"leftshift", "left-shift"}, {"rightshift", "right-shift"},
-    {"leftctrl", "left-ctrl"},   {"rightctrl", "right-ctrl"}, {"leftalt", "left-alt"},
-    {"rightalt", "right-alt"},   {"leftmeta", "left-gui"},    {"rightmeta", "right-gui"},
-    {"sysrq", "printscreen"},    {"compose", "application"},  {"playpause", "audioplay"},
-    {"nextsong", "audionext"},   {"previoussong", "audioprev"}, {"stopcd", "audiostop"},
-    {"kpenter", "keypad-enter"}, {"kpplus", "keypad-+"},      {"kpminus", "keypad--"},
-    {"kpasterisk", "keypad-*"},  {"kpslash", "keypad-/"},     {"kpdot", "keypad-."},
+    {"enter", "return"},
+    {"esc", "escape"},
+    {"minus", "-"},
+    {"equal", "="},
+    {"leftbrace", "["},
+    {"rightbrace", "]"},
+    {"semicolon", ";"},
+    {"apostrophe", "'"},
+    {"grave", "`"},
+    {"backslash", "\\"},
+    {"comma", ","},
+    {"dot", "."},
+    {"slash", "/"},
+    {"leftshift", "left-shift"},
+    {"rightshift", "right-shift"},
+    {"leftctrl", "left-ctrl"},
+    {"rightctrl", "right-ctrl"},
+    {"leftalt", "left-alt"},
+    {"rightalt", "right-alt"},
+    {"leftmeta", "left-gui"},
+    {"rightmeta", "right-gui"},
+    {"sysrq", "printscreen"},
+    {"compose", "application"},
+    {"playpause", "audioplay"},
+    {"nextsong", "audionext"},
+    {"previoussong", "audioprev"},
+    {"stopcd", "audiostop"},
+    {"kpenter", "keypad-enter"},
+    {"kpplus", "keypad-+"},
+    {"kpminus", "keypad--"},
+    {"kpasterisk", "keypad-*"},
+    {"kpslash", "keypad-/"},
+    {"kpdot", "keypad-."},
     {"kpequal", "keypad-="},
 };
 
-bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
+bool starts_with(std::string_view s, std::string_view prefix) {
+  return s.substr(0, prefix.size()) == prefix;
+}
 
 }  // namespace
 
@@ -109,7 +133,8 @@ void Keyboards::watch_input_dir() {
   // No /dev/input yet (no input device since boot): wait for the folder to appear.
   if (parent_watch_ < 0) {
     const std::string parent = std::filesystem::path(input_dir_).parent_path().string();
-    parent_watch_ = inotify_add_watch(inotify_.get(), parent.empty() ? "/" : parent.c_str(), IN_CREATE | IN_MOVED_TO | IN_ONLYDIR);
+    parent_watch_ =
+        inotify_add_watch(inotify_.get(), parent.empty() ? "/" : parent.c_str(), IN_CREATE | IN_MOVED_TO | IN_ONLYDIR);
   }
 }
 
@@ -162,7 +187,7 @@ void Keyboards::drain_inotify() {
       } else if (ev->wd == parent_watch_ && name == std::filesystem::path(input_dir_).filename().string()) {
         look_for_dir = true;
       }
-      if (ev->mask & IN_Q_OVERFLOW) rescan = true;  // events were lost: look at the folder itself
+      if (ev->mask & IN_Q_OVERFLOW) rescan = true;          // events were lost: look at the folder itself
       if (ev->mask & IN_IGNORED && ev->wd == dir_watch_) {  // the folder itself went away
         dir_watch_ = -1;
         look_for_dir = true;
@@ -192,8 +217,10 @@ bool Keyboards::drain_device(Device& d, KeySink& sink) {
       }
       return true;
     }
-    if (rc == LIBEVDEV_READ_STATUS_SYNC) flags = LIBEVDEV_READ_FLAG_SYNC;
-    else if (rc != LIBEVDEV_READ_STATUS_SUCCESS) return false;  // ENODEV: unplugged
+    if (rc == LIBEVDEV_READ_STATUS_SYNC)
+      flags = LIBEVDEV_READ_FLAG_SYNC;
+    else if (rc != LIBEVDEV_READ_STATUS_SUCCESS)
+      return false;  // ENODEV: unplugged
     // value 2 is the keyboard's own auto-repeat; buttons repeat by their own timing.
     if (ev.type != EV_KEY || ev.code > KEY_MAX || ev.value == 2) continue;
     const int button = button_of_code_[ev.code];
@@ -203,10 +230,12 @@ bool Keyboards::drain_device(Device& d, KeySink& sink) {
     // Only the edges of this keyboard's own presses count: a key already down when the keyboard was
     // opened, or a second press event of one held, changes nothing.
     if (pressed == (it != d.held.end())) continue;
-    if (pressed) d.held.push_back(ev.code);
-    else d.held.erase(it);
-    const Nanos t = d.monotonic ? std::chrono::seconds(ev.input_event_sec) + std::chrono::microseconds(ev.input_event_usec)
-                                : clock_.now();
+    if (pressed)
+      d.held.push_back(ev.code);
+    else
+      d.held.erase(it);
+    const Nanos t =
+        d.monotonic ? std::chrono::seconds(ev.input_event_sec) + std::chrono::microseconds(ev.input_event_usec) : clock_.now();
     sink.key(static_cast<std::size_t>(button), pressed, t);
   }
 }
@@ -224,8 +253,10 @@ void Keyboards::read(KeySink& sink) {
   if (!active_) return;
   drain_inotify();
   for (std::size_t i = 0; i < devices_.size();) {
-    if (drain_device(*devices_[i], sink)) ++i;
-    else drop(i, sink);
+    if (drain_device(*devices_[i], sink))
+      ++i;
+    else
+      drop(i, sink);
   }
 }
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "hal/clock.h"
 #include "base/unique_fd.h"
+#include "hal/clock.h"
 
 struct libevdev;
 
@@ -21,15 +21,15 @@ std::string board_key_name(unsigned code);
 
 // Gets a mapped key's press or release, with the kernel's CLOCK_MONOTONIC time of the key event.
 class KeySink {
-public:
+ public:
   virtual void key(std::size_t button, bool pressed, Nanos time) = 0;
 
-protected:
+ protected:
   ~KeySink() = default;
 };
 
 class Keyboards {
-public:
+ public:
   // keys[i] is button i's key name ("" for none). `input_dir` is where event devices appear
   // (/dev/input; the folder itself may appear later, as on a board that boots without a keyboard).
   // Never throws for a missing or unreadable device; std::system_error only if inotify or epoll
@@ -50,7 +50,7 @@ public:
   // Whether any button has a key; without one nothing is watched.
   bool active() const { return active_; }
 
-private:
+ private:
   struct Device;
   void watch_input_dir();
   void scan();

@@ -16,8 +16,8 @@ void OutputLeds::set(std::size_t led, bool on) {
   if (led >= live_.size() || !live_[led]) return;  // a missing LED was reported at start
   if (const int err = write(led, on); err != 0) {
     live_[led] = false;
-    error_ = labels_[led] + ": set value: " + base::errno_text(err) + (err == ENODEV ? " (chip removed?)" : "") +
-             "; LED disabled";
+    error_ =
+        labels_[led] + ": set value: " + base::errno_text(err) + (err == ENODEV ? " (chip removed?)" : "") + "; LED disabled";
   }
 }
 
@@ -26,12 +26,12 @@ void OutputLeds::set(std::size_t led, bool on) {
 namespace {
 
 class GpioLeds final : public detail::OutputLeds {
-public:
+ public:
   GpioLeds(const std::vector<LedConfig>& leds, const std::string& consumer, std::vector<std::string>& problems)
       : OutputLeds(labels(leds)) {
     for (std::size_t i = 0; i < leds.size(); ++i) {
       std::string error;
-      lines_.push_back(detail::request_line(leds[i].line, detail::LineUse::Output, consumer, &error));
+      lines_.push_back(detail::request_line(leds[i].line, detail::LineUse::output, consumer, &error));
       if (!lines_.back().line) {
         problems.push_back("LED '" + leds[i].name + "': " + error);
         disable(i);
@@ -39,7 +39,7 @@ public:
     }
   }
 
-private:
+ private:
   static std::vector<std::string> labels(const std::vector<LedConfig>& leds) {
     std::vector<std::string> l;
     for (const auto& led : leds) l.push_back("LED '" + led.name + "' (GPIO " + led.line.describe() + ")");

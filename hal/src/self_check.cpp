@@ -32,7 +32,9 @@ struct TagImageFree {
 };
 using TagImagePtr = std::unique_ptr<image_u8_t, TagImageFree>;
 
-float luma(const std::uint8_t* p) { return 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2]; }
+float luma(const std::uint8_t* p) {
+  return 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2];
+}
 
 }  // namespace
 
@@ -48,10 +50,14 @@ FiducialLayout FiducialLayout::for_display(int width, int height, std::uint32_t 
 std::array<int, 2> FiducialLayout::marker_origin(int corner) const {
   const int s = marker_size();
   switch (corner) {
-    case 0: return {0, 0};
-    case 1: return {display_width - s, 0};
-    case 2: return {display_width - s, display_height - s};
-    default: return {0, display_height - s};
+    case 0:
+      return {0, 0};
+    case 1:
+      return {display_width - s, 0};
+    case 2:
+      return {display_width - s, display_height - s};
+    default:
+      return {0, display_height - s};
   }
 }
 
@@ -98,7 +104,9 @@ struct DisplayChecker::Impl {
 
 DisplayChecker::DisplayChecker(SelfCheckOptions options) : impl_(std::make_unique<Impl>(options)) {}
 DisplayChecker::~DisplayChecker() = default;
-const RgbImage& DisplayChecker::last_warped() const { return impl_->warped; }
+const RgbImage& DisplayChecker::last_warped() const {
+  return impl_->warped;
+}
 
 SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialLayout& layout, const RgbImage& capture) {
   Impl& m = *impl_;
@@ -144,8 +152,7 @@ SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialL
   if (result.markers_found < 4) {
     if (foreign_id >= 0) {
       result.reason = "saw marker id " + std::to_string(foreign_id) + " from another check, expected ids " +
-                      std::to_string(layout.first_id) + ".." + std::to_string(layout.first_id + 3) +
-                      " (frozen or stale frame)";
+                      std::to_string(layout.first_id) + ".." + std::to_string(layout.first_id + 3) + " (frozen or stale frame)";
     } else {
       const int missing = static_cast<int>(std::find(seen.begin(), seen.end(), false) - seen.begin());
       result.reason = std::string(kCornerNames[missing]) + " marker (id " + std::to_string(layout.first_id + missing) +
@@ -181,8 +188,8 @@ SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialL
   // A flat screen maps by one homography; markers that disagree by more than a few camera pixels
   // were moved relative to each other (a scaled or partly shifted picture).
   if (rms > 3.0) {
-    result.reason = "markers do not lie on one plane as laid out (reprojection error " + std::to_string(rms) +
-                    " px, expected at most 3)";
+    result.reason =
+        "markers do not lie on one plane as laid out (reprojection error " + std::to_string(rms) + " px, expected at most 3)";
     return result;
   }
   result.registered = true;
@@ -285,8 +292,8 @@ SelfCheckResult DisplayChecker::check(const RgbImage& presented, const FiducialL
   result.score = total / weights;
   result.passed = result.score >= m.options.pass_threshold;
   result.reason = result.passed ? "ok"
-                                : "picture differs from the presented frame (SSIM " + std::to_string(result.score) +
-                                      " < " + std::to_string(m.options.pass_threshold) + ")";
+                                : "picture differs from the presented frame (SSIM " + std::to_string(result.score) + " < " +
+                                      std::to_string(m.options.pass_threshold) + ")";
   return result;
 }
 

@@ -20,11 +20,11 @@ namespace {
 
 using std::chrono::milliseconds;
 
-constexpr base::Name<LedPattern> kLedPatternNames[] = {{LedPattern::Off, "off"},
-                                                      {LedPattern::On, "on"},
-                                                      {LedPattern::BlinkSlow, "blink-slow"},
-                                                      {LedPattern::BlinkFast, "blink-fast"},
-                                                      {LedPattern::Heartbeat, "heartbeat"}};
+constexpr base::Name<LedPattern> kLedPatternNames[] = {{LedPattern::off, "off"},
+                                                       {LedPattern::on, "on"},
+                                                       {LedPattern::blink_slow, "blink-slow"},
+                                                       {LedPattern::blink_fast, "blink-fast"},
+                                                       {LedPattern::heartbeat, "heartbeat"}};
 static_assert(base::in_enum_order(kLedPatternNames));
 
 // A pattern is a period and the phases within it where the level toggles, starting on.
@@ -36,12 +36,15 @@ struct PatternShape {
 
 PatternShape shape(LedPattern p) {
   switch (p) {
-    case LedPattern::Off:
-    case LedPattern::On: return {Nanos::max(), {}, 0};
-    case LedPattern::BlinkSlow: return {milliseconds(1000), {milliseconds(500)}, 1};
-    case LedPattern::BlinkFast: return {milliseconds(200), {milliseconds(100)}, 1};
+    case LedPattern::off:
+    case LedPattern::on:
+      return {Nanos::max(), {}, 0};
+    case LedPattern::blink_slow:
+      return {milliseconds(1000), {milliseconds(500)}, 1};
+    case LedPattern::blink_fast:
+      return {milliseconds(200), {milliseconds(100)}, 1};
     // Two short beats then a pause, the rhythm people read as "alive".
-    case LedPattern::Heartbeat:
+    case LedPattern::heartbeat:
       return {milliseconds(1200), {milliseconds(100), milliseconds(250), milliseconds(350)}, 3};
   }
   return {Nanos::max(), {}, 0};
@@ -49,12 +52,16 @@ PatternShape shape(LedPattern p) {
 
 }  // namespace
 
-std::string_view to_string(LedPattern p) { return base::name_of(kLedPatternNames, p); }
-bool parse_led_pattern(std::string_view text, LedPattern& out) { return base::parse_name(kLedPatternNames, text, out); }
+std::string_view to_string(LedPattern p) {
+  return base::name_of(kLedPatternNames, p);
+}
+bool parse_led_pattern(std::string_view text, LedPattern& out) {
+  return base::parse_name(kLedPatternNames, text, out);
+}
 
 bool pattern_level(LedPattern p, Nanos elapsed) {
-  if (p == LedPattern::Off) return false;
-  if (p == LedPattern::On) return true;
+  if (p == LedPattern::off) return false;
+  if (p == LedPattern::on) return true;
   const PatternShape s = shape(p);
   const Nanos phase = elapsed % s.period;
   std::size_t passed = 0;
@@ -63,7 +70,7 @@ bool pattern_level(LedPattern p, Nanos elapsed) {
 }
 
 Nanos pattern_next_change(LedPattern p, Nanos elapsed) {
-  if (p == LedPattern::Off || p == LedPattern::On) return Nanos::max();
+  if (p == LedPattern::off || p == LedPattern::on) return Nanos::max();
   const PatternShape s = shape(p);
   const Nanos phase = elapsed % s.period;
   const Nanos period_start = elapsed - phase;
@@ -72,7 +79,9 @@ Nanos pattern_next_change(LedPattern p, Nanos elapsed) {
   return period_start + s.period;
 }
 
-Nanos pattern_period(LedPattern p) { return shape(p).period; }
+Nanos pattern_period(LedPattern p) {
+  return shape(p).period;
+}
 
 const std::string& LedSink::last_error() const {
   static const std::string none;
@@ -85,8 +94,7 @@ void RecordingLedSink::set(std::size_t led, bool on) {
   changes->push_back({led, on, clock_.now()});
 }
 
-Status::Status(std::vector<std::string> led_names, std::unique_ptr<LedSink> sink, const Clock& clock,
-               std::string status_file)
+Status::Status(std::vector<std::string> led_names, std::unique_ptr<LedSink> sink, const Clock& clock, std::string status_file)
     : names_(std::move(led_names)),
       leds_(names_.size()),
       sink_(std::move(sink)),
@@ -100,7 +108,9 @@ Status::~Status() {
   for (std::size_t i = 0; i < leds_.size(); ++i) sink_->set(i, false);
 }
 
-int Status::fd() const { return timer_.get(); }
+int Status::fd() const {
+  return timer_.get();
+}
 
 std::optional<std::size_t> Status::find_led(std::string_view name) const {
   for (std::size_t i = 0; i < names_.size(); ++i)

@@ -2,8 +2,8 @@
 
 #include "base/parse.h"
 
-#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -35,8 +35,10 @@ std::string describe(const toml::node& node) {
   if (node.is_string()) return "'" + node.as_string()->get() + "'";
   if (node.is_integer() || node.is_floating_point()) {
     std::ostringstream text;
-    if (node.is_integer()) text << node.as_integer()->get();
-    else text << node.as_floating_point()->get();
+    if (node.is_integer())
+      text << node.as_integer()->get();
+    else
+      text << node.as_floating_point()->get();
     return text.str();
   }
   return type_name(node);
@@ -51,8 +53,8 @@ class Fields {
 
   [[noreturn]] void fail_at(const toml::node* node, const std::string& key, const std::string& expected) const {
     const toml::source_region& where = node != nullptr ? node->source() : table_.source();
-    throw Failure{source_ + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": " +
-                  prefix_ + key + ": expected " + expected + ", got " + (node != nullptr ? describe(*node) : "nothing")};
+    throw Failure{source_ + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": " + prefix_ +
+                  key + ": expected " + expected + ", got " + (node != nullptr ? describe(*node) : "nothing")};
   }
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const { fail_at(table_.get(key), key, expected); }
 
@@ -65,8 +67,9 @@ class Fields {
         list += (list.empty() ? "" : ", ") + std::string(name);
       }
       if (!known)
-        throw Failure{source_ + ":" + std::to_string(node.source().begin.line) + ":" + std::to_string(node.source().begin.column) +
-                      ": " + prefix_ + std::string(key.str()) + ": unknown key (expected one of " + list + ")"};
+        throw Failure{source_ + ":" + std::to_string(node.source().begin.line) + ":" +
+                      std::to_string(node.source().begin.column) + ": " + prefix_ + std::string(key.str()) +
+                      ": unknown key (expected one of " + list + ")"};
     }
   }
   bool has(const std::string& key) const { return table_.get(key) != nullptr; }
@@ -78,9 +81,12 @@ class Fields {
       return *fallback;
     }
     double value = 0.0;
-    if (const auto* i = node->as_integer()) value = static_cast<double>(i->get());
-    else if (const auto* f = node->as_floating_point()) value = f->get();
-    else fail(key, "a number " + range);
+    if (const auto* i = node->as_integer())
+      value = static_cast<double>(i->get());
+    else if (const auto* f = node->as_floating_point())
+      value = f->get();
+    else
+      fail(key, "a number " + range);
     if (!std::isfinite(value) || !in_range(value)) fail(key, "a number " + range);
     if (std::abs(value) > kMaxMagnitude) fail(key, "a number of magnitude at most 1e6");
     return value;
@@ -110,10 +116,14 @@ class Fields {
     std::vector<double> out;
     for (const toml::node& element : *array) {
       double value = 0.0;
-      if (const auto* i = element.as_integer()) value = static_cast<double>(i->get());
-      else if (const auto* f = element.as_floating_point()) value = f->get();
-      else fail_at(&element, key, expected);
-      if (!std::isfinite(value) || std::abs(value) > kMaxMagnitude) fail_at(&element, key, expected + ", each of magnitude at most 1e6");
+      if (const auto* i = element.as_integer())
+        value = static_cast<double>(i->get());
+      else if (const auto* f = element.as_floating_point())
+        value = f->get();
+      else
+        fail_at(&element, key, expected);
+      if (!std::isfinite(value) || std::abs(value) > kMaxMagnitude)
+        fail_at(&element, key, expected + ", each of magnitude at most 1e6");
       out.push_back(value);
     }
     return out;
@@ -140,9 +150,15 @@ class Fields {
   std::string prefix_;
 };
 
-bool positive(double v) { return v > 0.0; }
-bool negative(double v) { return v < 0.0; }
-bool any(double) { return true; }
+bool positive(double v) {
+  return v > 0.0;
+}
+bool negative(double v) {
+  return v < 0.0;
+}
+bool any(double) {
+  return true;
+}
 
 void read_modules(const Fields& top, ModulesDisplay& out) {
   top.only({"type", "screen", "observer", "modules", "roi"});
@@ -173,7 +189,8 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
     const double last = modules.number("x_last", nullptr, "(the last module's x)", any);
     if (count == 1 && first != last) modules.fail("x_last", "x_first when there is one module");
     for (long long k = 0; k < count; ++k)  // both ends at most 1e6: every position is finite
-      out.module_x.push_back(count == 1 ? first : first + (last - first) * static_cast<double>(k) / static_cast<double>(count - 1));
+      out.module_x.push_back(count == 1 ? first
+                                        : first + (last - first) * static_cast<double>(k) / static_cast<double>(count - 1));
   }
   const glm::ivec2 resolution = modules.size("resolution", kMaxImageSide, "each module's image size");
   out.width = resolution.x;
@@ -196,7 +213,8 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
   }
   // Default: the screen's rectangle, as deep as a quarter of its smaller side on each side of it.
   const double depth = std::min(out.screen_width, out.screen_height) * 0.25;
-  out.physical_roi = {{-out.screen_width * 0.5, -out.screen_height * 0.5, -depth}, {out.screen_width * 0.5, out.screen_height * 0.5, depth}};
+  out.physical_roi = {{-out.screen_width * 0.5, -out.screen_height * 0.5, -depth},
+                      {out.screen_width * 0.5, out.screen_height * 0.5, depth}};
   if (roi.has("physical_min") || roi.has("physical_max")) {
     out.physical_roi = {roi.point("physical_min"), roi.point("physical_max")};
     for (int axis = 0; axis < 3; ++axis)
@@ -215,7 +233,8 @@ void read_quilt(const Fields& top, const std::string& path, Display& out) {
   const glm::ivec2 grid = top.size("quilt", kMaxQuiltSide, "columns x rows of views");
   const glm::ivec2 view = top.size("view_size", kMaxImageSide, "each view's size");
   if (static_cast<long long>(grid.x) * view.x > kMaxImageSide || static_cast<long long>(grid.y) * view.y > kMaxImageSide)
-    top.fail("view_size", "a quilt of at most " + std::to_string(kMaxImageSide) + " pixels per side (columns x width, rows x height)");
+    top.fail("view_size",
+             "a quilt of at most " + std::to_string(kMaxImageSide) + " pixels per side (columns x width, rows x height)");
   out.quilt.columns = grid.x;
   out.quilt.rows = grid.y;
   out.quilt.view_width = view.x;
@@ -289,7 +308,8 @@ bool parse_calibration(std::string_view text, const std::string& source, Calibra
     if (number == nullptr || !number->is_number() || !std::isfinite(number->get<double>()) || !in_range(number->get<double>())) {
       // The type, not the text: dumping a value nested a million deep would recurse that deep.
       std::string got = it->type_name();
-      if (number != nullptr) got = number->is_number() ? "\"value\": " + number->dump() : std::string("\"value\" of type ") + number->type_name();
+      if (number != nullptr)
+        got = number->is_number() ? "\"value\": " + number->dump() : std::string("\"value\" of type ") + number->type_name();
       error = source + ": " + key + ": expected an object {\"value\": number " + range + "}, got " + got;
       return false;
     }

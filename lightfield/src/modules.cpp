@@ -70,7 +70,9 @@ glm::dvec2 screen_point(const Module& m, const glm::dvec3& q) {
 
 namespace {
 
-bool defined_at(const Module& m, const glm::dvec3& q) { return q.z > m.z && q.z < m.observer_distance; }
+bool defined_at(const Module& m, const glm::dvec3& q) {
+  return q.z > m.z && q.z < m.observer_distance;
+}
 
 glm::dvec2 image_of_screen(const Module& m, const glm::dvec2& s) {
   return {(s.x - m.footprint0) / (m.footprint1 - m.footprint0) * m.width,
@@ -86,7 +88,8 @@ std::optional<glm::dvec3> physical_to_image(const Module& m, const glm::dvec3& q
 }
 
 glm::dvec3 screen_point_of_pixel(const Module& m, double u, double v) {
-  return {m.footprint0 + u / m.width * (m.footprint1 - m.footprint0), m.screen_height * 0.5 - v / m.height * m.screen_height, 0.0};
+  return {m.footprint0 + u / m.width * (m.footprint1 - m.footprint0), m.screen_height * 0.5 - v / m.height * m.screen_height,
+          0.0};
 }
 
 glm::dvec3 observer_point(const Module& m, const glm::dvec3& screen) {

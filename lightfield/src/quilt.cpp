@@ -31,7 +31,9 @@ int view_of_subpixel(const Interleave& i, const Calibration& c, int x, int y, in
   return std::clamp(static_cast<int>(std::floor(z * i.views)), 0, i.views - 1);
 }
 
-glm::ivec2 tile_of(const QuiltDisplay& quilt, int view) { return {view % quilt.columns, view / quilt.columns}; }
+glm::ivec2 tile_of(const QuiltDisplay& quilt, int view) {
+  return {view % quilt.columns, view / quilt.columns};
+}
 
 OffAxisView quilt_view(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up, double fov_y, double aspect,
                        double near, double far, double view_cone_deg, int view, int views) {

@@ -1,13 +1,13 @@
 // The player's command line: a thin layer over the app library.
 #include "app/check_command.h"
-#include "base/parse.h"
 #include "app/play_command.h"
 #include "app/render_command.h"
+#include "base/parse.h"
 #include "hal/devices.h"
 #include "hal/hal_test.h"
 #include "platform/platform.h"
-#include "scene/procedural.h"
 #include "render/settings.h"
+#include "scene/procedural.h"
 
 #include <CLI/CLI.hpp>
 
@@ -73,22 +73,29 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--size", size, "Image size WxH")->capture_default_str();
   render_cmd->add_option("--azimuth", render.framing.azimuth_deg, "Camera azimuth about +Y in degrees")->capture_default_str();
   render_cmd->add_option("--elevation", render.framing.elevation_deg, "Camera elevation in degrees")
-      ->check(CLI::Range(-90.0, 90.0))->capture_default_str();
-  render_cmd->add_option("--distance", render.framing.distance, "Camera distance as a multiple of the distance that just fits the scene")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::Range(-90.0, 90.0))
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--distance", render.framing.distance,
+                   "Camera distance as a multiple of the distance that just fits the scene")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   SettingOptions render_settings;
   render_settings.add_to(*render_cmd, render.frame);
   render_cmd->add_option("--platform", render.platform, "GL platform: " + platform::names_text())
-      ->check(CLI::IsMember(platform::names()))->capture_default_str();
+      ->check(CLI::IsMember(platform::names()))
+      ->capture_default_str();
   render_cmd->add_option("--frames", render.frames, "Frames to render; times are the median of all but the first")
-      ->check(CLI::Range(1, 100000))->capture_default_str();
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   render_cmd->add_option("--dump", render.dump_dir,
                          "Write float EXRs (raw and blurred AO, world position, normal, linear depth) and camera.json to DIR "
                          "(with --display: each view's in DIR/module-K/ or DIR/view-K/, with view.json)");
   render_cmd->add_option("--display", render.display,
                          "Light field display file (TOML, see board/displays): render every optical module or quilt view; "
                          "-o writes the montage of the modules or the quilt, --size is ignored");
-  render_cmd->add_option("--modules-dir", render.modules_dir, "With --display: one PNG per module (module-K.png) or view (view-K.png)");
+  render_cmd->add_option("--modules-dir", render.modules_dir,
+                         "With --display: one PNG per module (module-K.png) or view (view-K.png)");
   render_cmd->add_option("--native", render.native_output, "With a quilt --display: the interleaved native panel image (PNG)");
   render_cmd->add_flag("--view-probe", render.view_probe,
                        "With --display: draw view k as the flat grey (k, k, k) instead of the scene, to check the interleave");
@@ -96,58 +103,78 @@ int main(int argc, char** argv) {
   std::string info_platform = "auto";
   auto* info_cmd = cli.add_subcommand("info", "Print the platform, GL renderer, version and the extensions used");
   info_cmd->add_option("--platform", info_platform, "GL platform: " + platform::names_text())
-      ->check(CLI::IsMember(platform::names()))->capture_default_str();
+      ->check(CLI::IsMember(platform::names()))
+      ->capture_default_str();
 
   hal::HalTestOptions hal_test;
-  auto* hal_cmd = cli.add_subcommand("hal-test",
-                                     "Wiring check for a new board: print button events, cycle the LEDs, capture a frame and save it");
+  auto* hal_cmd = cli.add_subcommand(
+      "hal-test", "Wiring check for a new board: print button events, cycle the LEDs, capture a frame and save it");
   hal_cmd->add_option("--board", hal_test.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
   hal_cmd->add_option("--hal", hal_test.backend, "Hardware backend: linux or mock; default linux with --board, mock without")
       ->check(CLI::IsMember(hal::backend_names()));
   hal_cmd->add_option("--capture", hal_test.capture_path, "Where to save the captured frame")->capture_default_str();
   hal_cmd->add_option("--duration", hal_test.duration_s, "Seconds to listen to buttons and cycle LEDs")
-      ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
 
   std::vector<std::string> check_scenes;
-  auto* check_cmd = cli.add_subcommand("check", "Load scenes as play does, without GL, and say for each whether it plays (exit 1 if any is refused)");
+  auto* check_cmd = cli.add_subcommand(
+      "check", "Load scenes as play does, without GL, and say for each whether it plays (exit 1 if any is refused)");
   check_cmd->add_option("scenes", check_scenes, "Scenes to check (.gltf, .glb, builtin:NAME)")->required();
 
   app::PlayOptions play;
   std::string play_size = "1024x768";
-  auto* play_cmd = cli.add_subcommand("play", "Play a playlist (TOML) or scenes in a loop, kiosk style, until stopped (the default command)");
+  auto* play_cmd =
+      cli.add_subcommand("play", "Play a playlist (TOML) or scenes in a loop, kiosk style, until stopped (the default command)");
   play_cmd->add_option("inputs", play.inputs, "One playlist (.toml), or scenes (.gltf, .glb, builtin:NAME); none: builtin:demo");
-  play_cmd->add_option("--content", play.content_root, "Folder the playlist's files must stay inside (default: the playlist's folder)");
+  play_cmd->add_option("--content", play.content_root,
+                       "Folder the playlist's files must stay inside (default: the playlist's folder)");
   play_cmd->add_option("--duration", play.duration_s, "Scenes named on the command line: seconds each")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  play_cmd->add_option("--period", play.period_s, "Scenes named on the command line: turntable seconds per turn")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  play_cmd->add_option("--platform", play.platform, "GL platform: " + platform::names_text())
-      ->check(CLI::IsMember(platform::names()))->capture_default_str();
-  play_cmd->add_option("--size", play_size, "Surface size WxH (headless platforms; a window's initial size)")->capture_default_str();
-  play_cmd->add_flag("--fullscreen", play.fullscreen, "Start the window fullscreen (F11 toggles)");
-  play_cmd->add_option("--drm-device", play.drm_device,
-                       "kms: the DRM node (default: the first with KMS and a connected display; card numbers change between boots)");
-  play_cmd->add_option("--drm-connector", play.drm_connector,
-                       "kms: the connector, by name (HDMI-A-1, DSI-1, ...); auto: the first connected; help: list them and exit")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  play_cmd->add_option("--drm-mode", play.drm_mode, "kms: preferred, highest, or WxH[@R] (e.g. 1920x1080@60)")->capture_default_str();
-  play_cmd->add_option("--drm-atomic", play.drm_atomic, "kms: auto (atomic modesetting where the driver offers it) or no (legacy)")
-      ->check(CLI::IsMember({"auto", "no"}))->capture_default_str();
-  play_cmd->add_option("--snapshot", play.snapshot,
-                       "With --frames N: write frame N-1 as drawn onto the surface (after rotation) to FILE (PNG), before it is presented");
-  play_cmd->add_option("--rotation", play.rotation,
-                       "Turn frames 0, 90, 180 or 270 degrees clockwise for a display mounted turned (default: the board file's "
-                       "[display] rotation, else 0); the renderer turns them, not the display controller")
+  play_cmd->add_option("--period", play.period_s, "Scenes named on the command line: turntable seconds per turn")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  play_cmd->add_option("--platform", play.platform, "GL platform: " + platform::names_text())
+      ->check(CLI::IsMember(platform::names()))
+      ->capture_default_str();
+  play_cmd->add_option("--size", play_size, "Surface size WxH (headless platforms; a window's initial size)")
+      ->capture_default_str();
+  play_cmd->add_flag("--fullscreen", play.fullscreen, "Start the window fullscreen (F11 toggles)");
+  play_cmd->add_option(
+      "--drm-device", play.drm_device,
+      "kms: the DRM node (default: the first with KMS and a connected display; card numbers change between boots)");
+  play_cmd
+      ->add_option("--drm-connector", play.drm_connector,
+                   "kms: the connector, by name (HDMI-A-1, DSI-1, ...); auto: the first connected; help: list them and exit")
+      ->capture_default_str();
+  play_cmd->add_option("--drm-mode", play.drm_mode, "kms: preferred, highest, or WxH[@R] (e.g. 1920x1080@60)")
+      ->capture_default_str();
+  play_cmd
+      ->add_option("--drm-atomic", play.drm_atomic, "kms: auto (atomic modesetting where the driver offers it) or no (legacy)")
+      ->check(CLI::IsMember({"auto", "no"}))
+      ->capture_default_str();
+  play_cmd->add_option(
+      "--snapshot", play.snapshot,
+      "With --frames N: write frame N-1 as drawn onto the surface (after rotation) to FILE (PNG), before it is presented");
+  play_cmd
+      ->add_option("--rotation", play.rotation,
+                   "Turn frames 0, 90, 180 or 270 degrees clockwise for a display mounted turned (default: the board file's "
+                   "[display] rotation, else 0); the renderer turns them, not the display controller")
       ->check(CLI::IsMember({0, 90, 180, 270}));
   play_cmd->add_option("--drm-writeback", play.drm_writeback,
                        "kms: at exit, write what the display shows to FILE (PNG), read back through the DRM writeback connector");
   play_cmd->add_option("--overlay", play.overlay, "Panel with the status LEDs and the state: on, off, or auto (on in a window)")
-      ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   play_cmd->add_option("--frames", play.frames, "Stop after N frames (0: run until SIGTERM or SIGINT)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   play_cmd->add_option("--out", play.out_dir, "Write every frame as DIR/frame-NNNNNN.png");
-  play_cmd->add_option("--fps", play.fps,
-                       "Pace frames and the playlist clock at F per second (default: as fast as possible, the clock advancing 1/30 s a frame)")
+  play_cmd
+      ->add_option(
+          "--fps", play.fps,
+          "Pace frames and the playlist clock at F per second (default: as fast as possible, the clock advancing 1/30 s a frame)")
       ->check(CLI::NonNegativeNumber);
   play_cmd->add_option("--board", play.board_file, "Board description (TOML, see board/); without it, a built-in mock board");
   play_cmd->add_option("--hal", play.hal, "Hardware backend: linux or mock; default linux with --board, mock without")

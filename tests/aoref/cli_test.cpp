@@ -6,12 +6,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 namespace aoref {
 namespace {
@@ -125,8 +125,8 @@ TEST(Cli, WritesReferenceAndNoiseAndComparesOnASyntheticDump) {
   const fs::path dir = fresh_dir("cli_synthetic");
   write_synthetic_dump(dir);
   const fs::path out = dir / "ref.exr";
-  const CommandResult r = run(kAoref + " --dump " + dir.string() + " --rays 64 -o " + out.string() + " --compare " +
-                    (dir / "ao_raw.exr").string());
+  const CommandResult r =
+      run(kAoref + " --dump " + dir.string() + " --rays 64 -o " + out.string() + " --compare " + (dir / "ao_raw.exr").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("noise: binomial standard error per pixel max"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("MAE"), std::string::npos) << r.output;
@@ -190,12 +190,12 @@ void player_dump_and_reference(const std::string& name, const std::string& playe
                                Dump& dump, Image& out) {
   const fs::path dir = fresh_dir("e2e_" + name);
   // The paper's sphere estimator (8 samples x 5 radii), whatever the player's default is.
-  const CommandResult render = run(std::string(PLAYER_BIN) + " render " + player_arguments +
-                                   " --estimator sphere --samples 8 --radii 5 --size 48x48 -o " +
-                         (dir / "frame.png").string() + " --dump " + (dir / "dump").string());
+  const CommandResult render =
+      run(std::string(PLAYER_BIN) + " render " + player_arguments + " --estimator sphere --samples 8 --radii 5 --size 48x48 -o " +
+          (dir / "frame.png").string() + " --dump " + (dir / "dump").string());
   ASSERT_EQ(render.status, 0) << render.output;
   const CommandResult r = run(kAoref + " --dump " + (dir / "dump").string() + " --reference " + reference + " --rays 128 -o " +
-                    (dir / "ref.exr").string() + " --compare " + (dir / "dump" / "ao_raw.exr").string());
+                              (dir / "ref.exr").string() + " --compare " + (dir / "dump" / "ao_raw.exr").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::string error;
   ASSERT_TRUE(read_dump((dir / "dump").string(), dump, error)) << error;

@@ -61,7 +61,9 @@ inline View uniform_view(int w, int h, glm::dvec3 point, glm::dvec3 normal, glm:
 
 // Binomial standard error of a fraction p estimated from n independent rays. Stratified sampling only
 // lowers the true error, so bounds built on it are conservative.
-inline double binomial(double p, double n) { return std::sqrt(std::max(p * (1.0 - p), 0.0) / n); }
+inline double binomial(double p, double n) {
+  return std::sqrt(std::max(p * (1.0 - p), 0.0) / n);
+}
 
 inline double mean(const Image& image) {
   double sum = 0.0;

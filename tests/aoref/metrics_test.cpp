@@ -1,6 +1,6 @@
 // The error metrics on synthetic images with known answers.
-#include "aoref/image.h"
 #include "aoref/metrics.h"
+#include "aoref/image.h"
 
 #include <gtest/gtest.h>
 

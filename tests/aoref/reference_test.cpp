@@ -18,7 +18,9 @@ constexpr double kPi = std::numbers::pi;
 // direction are uniform on the unit disk. A wall x = -a R (a in [0, 1]) is hit within R exactly when
 // x <= -a, so the occluded fraction is the disk's segment beyond the chord at distance a, over pi:
 // (acos a - a sqrt(1 - a^2)) / pi. It is 1/2 for a wall at the point (a = 0) and 0 at a = 1.
-double wall_fraction(double a) { return (std::acos(a) - a * std::sqrt(1.0 - a * a)) / kPi; }
+double wall_fraction(double a) {
+  return (std::acos(a) - a * std::sqrt(1.0 - a * a)) / kPi;
+}
 
 // The disk's area with x > a and y > b (a^2 + b^2 < 1): the integral of sqrt(1 - x^2) - b over
 // [a, sqrt(1 - b^2)], with the antiderivative F(x) = (x sqrt(1 - x^2) + asin x) / 2.
@@ -81,12 +83,11 @@ TEST_P(NearFieldWall, MatchesTheDiskSegment) {
 }
 
 // a = 0.001: a wall right at the point (0.4994; exactly 0 would put the ray origins on the wall).
-INSTANTIATE_TEST_SUITE_P(Distances, NearFieldWall, ::testing::Values(0.001, 0.25, 0.5, 0.9),
-                         [](const auto& param_info) {
-                           std::string name = "a";  // GCC 12 warns falsely on "a" + std::string&&
-                           name += std::to_string(static_cast<int>(param_info.param * 1000.0));
-                           return name + "e_3";
-                         });
+INSTANTIATE_TEST_SUITE_P(Distances, NearFieldWall, ::testing::Values(0.001, 0.25, 0.5, 0.9), [](const auto& param_info) {
+  std::string name = "a";  // GCC 12 warns falsely on "a" + std::string&&
+  name += std::to_string(static_cast<int>(param_info.param * 1000.0));
+  return name + "e_3";
+});
 
 TEST(NearField, CornerOfTwoWallsMatchesTheUnionOfSegments) {
   const double a = 0.25, b = 0.4;  // corner_fraction(0.25, 0.4) = 0.5330
@@ -181,8 +182,8 @@ TEST_P(SphereVsPlayer, AgreesOnAFacingPlane) {
   ssao::update_for_frame(params, ao, frame);
   const std::vector<float> depth_image(kSize * kSize, static_cast<float>(depth));
   const std::vector<glm::vec3> facing(depth_image.size(), glm::vec3(0, 0, 1));
-  const auto player = ssao::reference_ssao(ssao::build_depth_chain(depth_image, kSize, kSize), facing, {}, params,
-                                           1.0f / 20.0f, ssao::Estimator::sphere);
+  const auto player = ssao::reference_ssao(ssao::build_depth_chain(depth_image, kSize, kSize), facing, {}, params, 1.0f / 20.0f,
+                                           ssao::Estimator::sphere);
 
   scene::Scene s;
   add_quad(s, {-50.0, -50.0, -depth}, {100.0, 0.0, 0.0}, {0.0, 100.0, 0.0});

@@ -13,8 +13,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::vector<app::CameraStep> steps;
   std::string error;
-  if (!app::parse_camera_script_text(std::string_view(reinterpret_cast<const char*>(data), size), "camera.script",
-                                     steps, error))
+  if (!app::parse_camera_script_text(std::string_view(reinterpret_cast<const char*>(data), size), "camera.script", steps, error))
     return 0;
   double last = 0;
   for (const app::CameraStep& step : steps) {

@@ -1,10 +1,10 @@
 #pragma once
 // A scratch folder per fuzzing process, removed at exit: targets whose parser takes a path (or
 // resolves relative paths against one) write there, so parallel jobs never share a file.
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 namespace fuzz {
 

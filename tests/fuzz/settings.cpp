@@ -18,6 +18,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string described = render::describe(settings, base);
   render::FrameSettings again;
   if (!render::apply_settings(again, described, error)) __builtin_trap();  // it wrote what it cannot read
-  if (render::describe(again, base) != described) __builtin_trap();      // and reads it as something else
+  if (render::describe(again, base) != described) __builtin_trap();        // and reads it as something else
   return 0;
 }

@@ -42,7 +42,7 @@ struct Record {
   std::set<Level> stored_unloadable;      // ... nor to image loads
   std::set<GLuint> fetched_unfenced;      // fetched by a command no image-access barrier followed yet
   int commands = 0;
-  int coarser_level_stores = 0;           // stores into a level > 0: the depth chain ran
+  int coarser_level_stores = 0;  // stores into a level > 0: the depth chain ran
   int barriers = 0;
   std::vector<std::string> hazards;
 
@@ -66,8 +66,7 @@ struct Record {
     for (const Level& pending : stored_unfetchable)
       if (fetched.count(pending.first) && !stored.count(pending))
         hazards.push_back(where + " samples texture " + std::to_string(pending.first) + " (level " +
-                          std::to_string(pending.second) +
-                          " stored before) with no GL_TEXTURE_FETCH_BARRIER_BIT between");
+                          std::to_string(pending.second) + " stored before) with no GL_TEXTURE_FETCH_BARRIER_BIT between");
     for (const Level& level : loaded)
       if (stored_unloadable.count(level))
         hazards.push_back(where + " loads image " + std::to_string(level.first) +
@@ -104,10 +103,19 @@ GLenum active_unit = 0;
 
 bool is_sampler(GLenum type) {
   switch (type) {
-    case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_SHADOW:
-    case GL_SAMPLER_2D_ARRAY: case GL_SAMPLER_2D_ARRAY_SHADOW: case GL_SAMPLER_CUBE_SHADOW:
-    case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_2D_ARRAY:
-    case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_2D:
+    case GL_SAMPLER_3D:
+    case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_2D_SHADOW:
+    case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_SAMPLER_CUBE_SHADOW:
+    case GL_INT_SAMPLER_2D:
+    case GL_INT_SAMPLER_3D:
+    case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
       return true;
     default:
       return false;
@@ -116,9 +124,16 @@ bool is_sampler(GLenum type) {
 
 bool is_image(GLenum type) {
   switch (type) {
-    case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_CUBE: case GL_IMAGE_2D_ARRAY:
-    case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_2D_ARRAY:
-    case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_2D_ARRAY:
+    case GL_IMAGE_2D:
+    case GL_IMAGE_3D:
+    case GL_IMAGE_CUBE:
+    case GL_IMAGE_2D_ARRAY:
+    case GL_INT_IMAGE_2D:
+    case GL_INT_IMAGE_3D:
+    case GL_INT_IMAGE_2D_ARRAY:
+    case GL_UNSIGNED_INT_IMAGE_2D:
+    case GL_UNSIGNED_INT_IMAGE_3D:
+    case GL_UNSIGNED_INT_IMAGE_2D_ARRAY:
       return true;
     default:
       return false;

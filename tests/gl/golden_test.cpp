@@ -77,9 +77,9 @@ TEST_P(GoldenImage, DemoMatchesTheGoldenPictures) {
       write_png(out_base + ".actual.png", settings.width, settings.height, actual);
       write_png(out_base + ".diff.png", settings.width, settings.height, diff);
     }
-    EXPECT_LE(share, kMaxFailingShare) << golden.name << " on " << GetParam() << ": " << failing
-                                       << " pixels differ by more than " << kMaxChannelDifference << "/255 (worst "
-                                       << worst << "); see " << out_base << ".actual.png and .diff.png";
+    EXPECT_LE(share, kMaxFailingShare) << golden.name << " on " << GetParam() << ": " << failing << " pixels differ by more than "
+                                       << kMaxChannelDifference << "/255 (worst " << worst << "); see " << out_base
+                                       << ".actual.png and .diff.png";
   }
 }
 

@@ -1,11 +1,11 @@
 #pragma once
 // A context, a renderer and a framed scene, for GL tests on either platform.
-#include "scene/load.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "gl/session.h"
 #include "platform/platform.h"
 #include "render/renderer.h"
+#include "scene/load.h"
 
 #include <gtest/gtest.h>
 
@@ -33,8 +33,8 @@ struct Harness {
   }
 
   // The same for a scene built by the test.
-  ::testing::AssertionResult start(const std::string& platform_name, scene::Scene built,
-                                   const render::FrameSettings& settings, const scene::Framing& framing = {}) {
+  ::testing::AssertionResult start(const std::string& platform_name, scene::Scene built, const render::FrameSettings& settings,
+                                   const scene::Framing& framing = {}) {
     std::string error;
     if (!open(platform_name, settings, error)) return ::testing::AssertionFailure() << error;
     scene = std::move(built);
@@ -74,6 +74,8 @@ struct Harness {
   }
 };
 
-inline std::string platform_name(const ::testing::TestParamInfo<std::string>& info) { return info.param; }
+inline std::string platform_name(const ::testing::TestParamInfo<std::string>& info) {
+  return info.param;
+}
 
 }  // namespace test

@@ -1,18 +1,18 @@
 // Light field output on a real context: the lenticular interleave checked at every panel subpixel with
 // the view probe, the quilt's tile order, module skipping, the positions texture's round trip through
 // the module's world-to-image transform, and Algorithm 2 against Algorithm 1 where they must agree.
+#include "render/light_field.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "lightfield/display_file.h"
 #include "platform/platform.h"
-#include "render/light_field.h"
 #include "render/readback.h"
 #include "render/renderer.h"
 #include "scene/load.h"
 #include "scene/procedural.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -179,7 +179,8 @@ physical_max = [0.5, 0.1, 0.1]
         const glm::dvec3 world(instance.world * glm::dvec4(glm::dvec3(vertex.position), 1.0));
         const auto image_point = lightfield::physical_to_image(module.module, module.roi.to_physical(world));
         if (!image_point) continue;
-        ASSERT_FALSE(image_point->x >= 0 && image_point->x <= 32 && image_point->y >= 0 && image_point->y <= 18) << "module " << k;
+        ASSERT_FALSE(image_point->x >= 0 && image_point->x <= 32 && image_point->y >= 0 && image_point->y <= 18)
+            << "module " << k;
       }
   }
   EXPECT_GT(showing, 0);
@@ -287,8 +288,9 @@ physical_max = [0.5, 0.375, 0.25]
   render::Renderer renderer;
   std::string error;
   settings.check_errors = true;
-  ASSERT_TRUE(renderer.init(*session_, {session_->platform().framebuffer(), 0, 0, session_->platform().srgb_framebuffer()}, error) &&
-              renderer.upload(scene, error) && renderer.configure(settings, error))
+  ASSERT_TRUE(
+      renderer.init(*session_, {session_->platform().framebuffer(), 0, 0, session_->platform().srgb_framebuffer()}, error) &&
+      renderer.upload(scene, error) && renderer.configure(settings, error))
       << error;
   render::View camera;
   camera.eye = {0.0, 0.0, 2000.0};  // the observer line, in world units
@@ -356,12 +358,16 @@ resolution = "64x36"
       const size_t at = (static_cast<size_t>(row) * 64 + static_cast<size_t>(x)) * 4;
       const int inside = row - 14;  // 36 rows centred in 64
       for (int c = 0; c < 3; ++c) {
-        const int expected = inside >= 0 && inside < 36 ? output[(static_cast<size_t>(inside) * 64 + static_cast<size_t>(x)) * 4 + static_cast<size_t>(c)] : 0;
+        const int expected =
+            inside >= 0 && inside < 36
+                ? output[(static_cast<size_t>(inside) * 64 + static_cast<size_t>(x)) * 4 + static_cast<size_t>(c)]
+                : 0;
         ASSERT_EQ(shown[at + static_cast<size_t>(c)], expected) << x << "," << row << " channel " << c;
       }
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Platforms, LightField, ::testing::Values("egl", "osmesa"), [](const auto& param) { return param.param; });
+INSTANTIATE_TEST_SUITE_P(Platforms, LightField, ::testing::Values("egl", "osmesa"),
+                         [](const auto& param) { return param.param; });
 
 }  // namespace

@@ -59,8 +59,8 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
   const ssao::Estimator estimator = settings.ao_settings.estimator;
   const auto depth = h.renderer.read_linear_depth();
   const auto chain = ssao::build_depth_chain(depth, settings.width, settings.height);
-  const auto cpu_raw = ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(), h.renderer.ssao_params(),
-                                            h.renderer.inverse_far(), estimator, mediump_reference);
+  const auto cpu_raw = ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(),
+                                            h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, mediump_reference);
   const auto gpu_raw = h.renderer.read_ao_raw();
   ASSERT_EQ(gpu_raw.size(), cpu_raw.size());
   if (estimator == ssao::Estimator::horizon) {
@@ -85,7 +85,9 @@ void expect_gpu_equals_reference(const Harness& h, const std::string& what, bool
   if (settings.ao_settings.half_resolution) {
     // An interpolated AO is rounded to half float on the GPU's own terms (llvmpipe does not round to
     // nearest everywhere): one half-float step below 1, 2^-11, and no more.
-    const Comparison upsampled = compare(h.renderer.read_ao_final(), ssao::reference_upsample(low, depth, h.renderer.upsample_params(), h.renderer.read_view_normals()), 4.9e-4f);
+    const Comparison upsampled =
+        compare(h.renderer.read_ao_final(),
+                ssao::reference_upsample(low, depth, h.renderer.upsample_params(), h.renderer.read_view_normals()), 4.9e-4f);
     EXPECT_EQ(upsampled.off_by_more, 0u) << what << ", max difference " << upsampled.max_difference;
   }
   EXPECT_EQ(h.renderer.gl_error(), "") << what;
@@ -100,8 +102,8 @@ TEST_P(Pipeline, GpuSsaoAndBlurEqualTheCpuReference) {
         settings.blur.mode = blur;
         Harness h;
         ASSERT_TRUE(h.start(GetParam(), scene, settings));
-        expect_gpu_equals_reference(h, std::string(scene) + " " + std::string(ssao::name(pattern)) + " " +
-                                           std::string(ssao::name(blur)));
+        expect_gpu_equals_reference(
+            h, std::string(scene) + " " + std::string(ssao::name(pattern)) + " " + std::string(ssao::name(blur)));
       }
     }
   }
@@ -146,28 +148,31 @@ TEST_P(Pipeline, HorizonWithAWideRadiusEqualsTheCpuReference) {
 TEST_P(Pipeline, EveryEstimatorPrecisionAndResolutionEqualsTheCpuReference) {
   for (ssao::Estimator estimator : ssao::kEstimators)
     for (ssao::Precision precision : ssao::kPrecisions)
-    for (bool half : {false, true})
-      for (bool chain : {false, true}) {
-        render::FrameSettings settings = small_settings();
-        settings.ao_settings.precision = precision;
-        settings.width = 96;
-        settings.height = 72;
-        settings.ao_settings.estimator = estimator;
-        settings.ao_settings.samples = 16;
-        settings.ao_settings.half_resolution = half;
-        settings.ao_settings.depth_chain = chain;
-        settings.radius = 1.5f;  // large enough that the depth chain's coarse levels are read
-        Harness h;
-        ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
-        const std::string what = std::string(ssao::name(estimator)) + " " + std::string(ssao::name(precision)) +
-                                 (half ? " half" : " full") + (chain ? " chain" : " flat");
-        // The program that ran is the variant the setting names (on llvmpipe its output cannot tell).
-        EXPECT_EQ(h.renderer.targets().ssao_defines.find("#define AO_MEDIUMP") != std::string_view::npos,
-                  precision == ssao::Precision::mediump) << what << ": " << h.renderer.targets().ssao_defines;
-        EXPECT_EQ(h.renderer.targets().ssao_defines.find("#define ESTIMATOR " + std::to_string(static_cast<int>(estimator))) !=
-                      std::string_view::npos, true) << what;
-        expect_gpu_equals_reference(h, what);
-      }
+      for (bool half : {false, true})
+        for (bool chain : {false, true}) {
+          render::FrameSettings settings = small_settings();
+          settings.ao_settings.precision = precision;
+          settings.width = 96;
+          settings.height = 72;
+          settings.ao_settings.estimator = estimator;
+          settings.ao_settings.samples = 16;
+          settings.ao_settings.half_resolution = half;
+          settings.ao_settings.depth_chain = chain;
+          settings.radius = 1.5f;  // large enough that the depth chain's coarse levels are read
+          Harness h;
+          ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
+          const std::string what = std::string(ssao::name(estimator)) + " " + std::string(ssao::name(precision)) +
+                                   (half ? " half" : " full") + (chain ? " chain" : " flat");
+          // The program that ran is the variant the setting names (on llvmpipe its output cannot tell).
+          EXPECT_EQ(h.renderer.targets().ssao_defines.find("#define AO_MEDIUMP") != std::string_view::npos,
+                    precision == ssao::Precision::mediump)
+              << what << ": " << h.renderer.targets().ssao_defines;
+          EXPECT_EQ(h.renderer.targets().ssao_defines.find("#define ESTIMATOR " + std::to_string(static_cast<int>(estimator))) !=
+                        std::string_view::npos,
+                    true)
+              << what;
+          expect_gpu_equals_reference(h, what);
+        }
 }
 
 TEST_P(Pipeline, EachEstimatorAndPrecisionIsItsOwnProgram) {
@@ -186,7 +191,8 @@ TEST_P(Pipeline, EachEstimatorAndPrecisionIsItsOwnProgram) {
       EXPECT_EQ(std::count(ids.begin(), ids.end(), program->id()), 0) << what << " shares a program with another variant";
       ids.push_back(program->id());
       const std::string_view defines = h.renderer.programs().ssao_defines(estimator, precision);
-      EXPECT_NE(defines.find("#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n"), std::string_view::npos) << what;
+      EXPECT_NE(defines.find("#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n"), std::string_view::npos)
+          << what;
       EXPECT_EQ(defines.find("#define AO_MEDIUMP") != std::string_view::npos, precision == ssao::Precision::mediump) << what;
       render::FrameSettings variant = settings;
       variant.ao_settings.estimator = estimator;
@@ -307,7 +313,7 @@ struct AnalyticCorner {
     const glm::dvec3 position = ray(ndc_of(pixel)) * d;
     const glm::dvec2 t = turn(pixel);
     glm::dmat3 basis(t.x, t.y, 0.0, -t.y, t.x, 0.0, 0.0, 0.0, 1.0);  // sphere: a turn about the view axis
-    if (estimator == ssao::Estimator::hemisphere) {  // z along the normal, x the turn's direction in the face
+    if (estimator == ssao::Estimator::hemisphere) {                  // z along the normal, x the turn's direction in the face
       glm::dvec3 tangent = glm::dvec3(t, 0.0) - n * glm::dot(glm::dvec3(t, 0.0), n);
       if (glm::dot(tangent, tangent) < 1e-6) tangent = glm::dvec3(-t.y, t.x, 0.0) - n * glm::dot(glm::dvec3(-t.y, t.x, 0.0), n);
       tangent = glm::normalize(tangent);
@@ -327,8 +333,7 @@ struct AnalyticCorner {
         if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return 0;
         double surface = depth(ndc_of(texel));
         if (surface <= 0.0) return 0;
-        if (estimator == ssao::Estimator::hemisphere)
-          surface += std::clamp(plane_depth(ndc) - plane_depth(ndc_of(texel)), -r, r);
+        if (estimator == ssao::Estimator::hemisphere) surface += std::clamp(plane_depth(ndc) - plane_depth(ndc_of(texel)), -r, r);
         const double in_front = (-offset.z - bias) - (surface - d);  // > 0: the surface hides the point
         const double in_range = r - std::abs(surface - d);           // > 0: the surface is near enough
         if (std::abs(in_front) < margin || std::abs(in_range) < margin) return 2;
@@ -345,8 +350,10 @@ struct AnalyticCorner {
         neighbour[axis] += fraction < 0.5 ? -1 : 1;
         if (std::min(fraction, 1.0 - fraction) < 0.02 && decide(neighbour) != decision) decision = 2;
       }
-      if (decision == 2) ++unsure;
-      else sure += decision;
+      if (decision == 2)
+        ++unsure;
+      else
+        sure += decision;
     }
     return {static_cast<double>(sure) / p.samples, static_cast<double>(sure + unsure) / p.samples};
   }
@@ -385,7 +392,7 @@ struct AnalyticCorner {
         // step before (0.5: at the ends of the steps), a pixel apart at least; the first the jitter of
         // the way from 1.6 pixels out to half a step.
         const double spacing = radius_pixels / (steps - 1), jitter = tap_jitter(pixel);
-        const double distance_pixels = steps == 1 ? radius_pixels
+        const double distance_pixels = steps == 1  ? radius_pixels
                                        : step == 0 ? std::min(1.6 + jitter * (std::max(0.5 * spacing, 1.6) - 1.6), radius_pixels)
                                                    : std::max((step + jitter - 0.5) * spacing, double(step));
         for (int side = 0; side < 2; ++side) {
@@ -512,7 +519,8 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
   for (bool prepass : {true, false})
     for (bool ao : {true, false})
       for (ssao::Blur blur : {ssao::Blur::off, ssao::Blur::gaussian, ssao::Blur::bilateral, ssao::Blur::denoise})
-        for (render::Picture view : {render::Picture::color, render::Picture::ao, render::Picture::normal, render::Picture::depth}) {
+        for (render::Picture view :
+             {render::Picture::color, render::Picture::ao, render::Picture::normal, render::Picture::depth}) {
           render::FrameSettings settings = small_settings();
           settings.width = 48;
           settings.height = 32;
@@ -522,13 +530,13 @@ TEST_P(Pipeline, NoGlErrorAfterAnyPassInAnyConfiguration) {
           settings.output = view;
           Harness h;
           ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
-          EXPECT_EQ(h.renderer.gl_error(), "") << "prepass " << prepass << " ao " << ao << " blur " << ssao::name(blur)
-                                               << " view " << render::name(view);
+          EXPECT_EQ(h.renderer.gl_error(), "")
+              << "prepass " << prepass << " ao " << ao << " blur " << ssao::name(blur) << " view " << render::name(view);
           const render::PassTimes times = h.renderer.collect_times();
-          EXPECT_EQ(times.ms[render::kDepthPrepass] >= 0.0, prepass);
-          EXPECT_EQ(times.ms[render::kSsao] >= 0.0, ao);
-          EXPECT_EQ(times.ms[render::kBlurH] >= 0.0, ao && blur != ssao::Blur::off);
-          EXPECT_GE(times.ms[render::kPresent], 0.0);
+          EXPECT_EQ(times[render::Pass::depth_prepass] >= 0.0, prepass);
+          EXPECT_EQ(times[render::Pass::ssao] >= 0.0, ao);
+          EXPECT_EQ(times[render::Pass::blur_h] >= 0.0, ao && blur != ssao::Blur::off);
+          EXPECT_GE(times[render::Pass::present], 0.0);
         }
 }
 
@@ -585,17 +593,17 @@ TEST_P(Pipeline, AutomaticPrepassMeasuresBothAndKeepsTheFaster) {
   Harness h;
   ASSERT_TRUE(h.start(GetParam(), "builtin:demo", settings));
   const render::PassTimes first = h.renderer.collect_times();
-  EXPECT_GE(first.ms[render::kDepthPrepass], 0.0);  // the first frame tries the prepass
+  EXPECT_GE(first[render::Pass::depth_prepass], 0.0);  // the first frame tries the prepass
   h.renderer.render(h.camera);
   const render::PassTimes second = h.renderer.collect_times();
-  EXPECT_LT(second.ms[render::kDepthPrepass], 0.0);  // the second does without
+  EXPECT_LT(second[render::Pass::depth_prepass], 0.0);  // the second does without
   ASSERT_GE(h.renderer.raster_ms_with_prepass(), 0.0);
   ASSERT_GE(h.renderer.raster_ms_without_prepass(), 0.0);
   h.renderer.render(h.camera);
   const render::PassTimes third = h.renderer.collect_times();
   const bool keep = h.renderer.raster_ms_with_prepass() <= h.renderer.raster_ms_without_prepass();
   EXPECT_EQ(h.renderer.prepass_in_use(), keep);
-  EXPECT_EQ(third.ms[render::kDepthPrepass] >= 0.0, keep);
+  EXPECT_EQ(third[render::Pass::depth_prepass] >= 0.0, keep);
   EXPECT_EQ(h.renderer.gl_error(), "");
 }
 
@@ -670,9 +678,10 @@ TEST_P(Pipeline, BaseColorTextureLandsWhereItsUvsSay) {
   Harness h;
   ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, square_filling_the_view()));
   const auto color = h.renderer.read_color();  // row 0 at the top
-  auto at = [&](int x, int y) { return glm::ivec3(color[static_cast<size_t>((y * kSide + x) * 4)],
-                                                  color[static_cast<size_t>((y * kSide + x) * 4 + 1)],
-                                                  color[static_cast<size_t>((y * kSide + x) * 4 + 2)]); };
+  auto at = [&](int x, int y) {
+    return glm::ivec3(color[static_cast<size_t>((y * kSide + x) * 4)], color[static_cast<size_t>((y * kSide + x) * 4 + 1)],
+                      color[static_cast<size_t>((y * kSide + x) * 4 + 2)]);
+  };
   const glm::ivec3 top_left = at(16, 16), top_right = at(48, 16), bottom_left = at(16, 48), bottom_right = at(48, 48);
   EXPECT_GT(top_left.r, 100);
   EXPECT_LT(top_left.g + top_left.b, 10);

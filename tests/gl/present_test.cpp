@@ -157,8 +157,10 @@ TEST_P(Present, AoStrengthChangesTheShadedImageButNotTheAo) {
     const size_t x = pixel % 96, y = 71 - pixel / 96;  // AO rows are bottom-up
     // Where AO is under 1%, squaring 1 - AO darkens by under two thirds of a step, and the GPU's pow()
     // and sRGB encoding round it either way (llvmpipe: 148 against 147 at AO 0.00024).
-    if (ao_one[y * 96 + x].x < 0.01f) EXPECT_LE(std::abs(two[i + 1] - one[i + 1]), 1) << i;
-    else EXPECT_LE(two[i + 1], one[i + 1]) << i;
+    if (ao_one[y * 96 + x].x < 0.01f)
+      EXPECT_LE(std::abs(two[i + 1] - one[i + 1]), 1) << i;
+    else
+      EXPECT_LE(two[i + 1], one[i + 1]) << i;
     if (one[i + 1] < 40) continue;  // too dark to tell a step apart
     if (ao_one[y * 96 + x].x < 0.1f) continue;
     ++occluded;

@@ -111,7 +111,8 @@ TEST_P(Session, OnlyTheModulesOutputFallsBackFromHorizon) {
 TEST_P(Session, ViewOutputDrawsWhatTheRendererDraws) {
   std::string error;
   render::Renderer renderer;
-  ASSERT_TRUE(renderer.init(*session_, surface(), error) && renderer.upload(scene_, error) && renderer.configure(settings(), error))
+  ASSERT_TRUE(renderer.init(*session_, surface(), error) && renderer.upload(scene_, error) &&
+              renderer.configure(settings(), error))
       << error;
   const scene::Camera camera = scene::frame(scene_.bounds, {}, 64, 48);
   renderer.render(camera);

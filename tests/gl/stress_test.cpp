@@ -20,14 +20,16 @@ render::FrameSettings stress_settings() {
   render::FrameSettings settings;
   settings.width = settings.height = kSide;
   settings.check_errors = true;
-  settings.blur.mode = ssao::Blur::off;  // compare the estimator itself
+  settings.blur.mode = ssao::Blur::off;          // compare the estimator itself
   settings.ao_settings.half_resolution = false;  // pixel for pixel against the untouched case
   settings.ao_settings.samples = 16;
   settings.temporal = false;  // one frame's numerics; TemporalAccumulationStaysFiniteAtEveryNearFarRatio below
   return settings;
 }
 
-scene::Scene spheres() { return *scene::make_builtin("spheres"); }
+scene::Scene spheres() {
+  return *scene::make_builtin("spheres");
+}
 
 // What a picture's AO and coverage were; taken while its context is current, since each Harness
 // has its own context and GL names mean nothing in another one.
@@ -36,7 +38,9 @@ struct Snapshot {
   std::vector<float> depth;
 };
 
-Snapshot snapshot(const Harness& h) { return {h.renderer.read_ao_final(), h.renderer.read_linear_depth()}; }
+Snapshot snapshot(const Harness& h) {
+  return {h.renderer.read_ao_final(), h.renderer.read_linear_depth()};
+}
 
 Snapshot render_snapshot(const std::string& platform_name, scene::Scene scene) {
   Harness h;
@@ -45,7 +49,7 @@ Snapshot render_snapshot(const std::string& platform_name, scene::Scene scene) {
 }
 
 struct Difference {
-  double mean = 0.0;          // over pixels that are objects in both pictures
+  double mean = 0.0;  // over pixels that are objects in both pictures
   // Share of those pixels differing by more than 1/16: one sample of the point-sampled estimators
   // (16 samples), a sixth of a slice of the default horizon estimator (16 taps: 2 slices of 8).
   double worst_share = 0.0;
@@ -114,7 +118,8 @@ scene::Scene baked_far_away(double distance) {
   const glm::dvec3 offset(distance, -distance, distance);
   for (scene::Instance& instance : baked.instances) {
     scene::Mesh mesh = baked.meshes[static_cast<size_t>(instance.mesh)];
-    for (scene::Vertex& v : mesh.vertices) v.position = glm::vec3(glm::dvec3(instance.world * glm::dvec4(v.position, 1.0)) + offset);
+    for (scene::Vertex& v : mesh.vertices)
+      v.position = glm::vec3(glm::dvec3(instance.world * glm::dvec4(v.position, 1.0)) + offset);
     mesh.min = glm::vec3(glm::dvec3(instance.world * glm::dvec4(mesh.min, 1.0)) + offset);
     mesh.max = glm::vec3(glm::dvec3(instance.world * glm::dvec4(mesh.max, 1.0)) + offset);
     baked.meshes.push_back(mesh);
@@ -296,8 +301,10 @@ TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
       const auto chain = ssao::build_depth_chain(depth, kSide, kSide);
       const auto normals = h.renderer.read_view_normals();
       const auto faces = h.renderer.read_view_face_normals();
-      const auto high = ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
-      const auto medium = ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
+      const auto high =
+          ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, false);
+      const auto medium =
+          ssao::reference_ssao(chain, normals, faces, h.renderer.ssao_params(), h.renderer.inverse_far(), estimator, true);
       double sum = 0.0;
       size_t objects = 0, off = 0, changed = 0;
       for (size_t i = 0; i < high.size(); ++i) {
@@ -319,8 +326,10 @@ TEST(Mediump, VariantStaysWithinTheBoundOfHighp) {
   }
   for (ssao::Estimator estimator : ssao::kEstimators) {
     const size_t changed = changed_by_estimator[static_cast<size_t>(estimator)];
-    if (estimator == ssao::Estimator::horizon) EXPECT_EQ(changed, 0u) << "horizon: its taps are highp in both variants";
-    else EXPECT_GT(changed, 0u) << ssao::name(estimator) << ": the fp16 emulation changed nothing";
+    if (estimator == ssao::Estimator::horizon)
+      EXPECT_EQ(changed, 0u) << "horizon: its taps are highp in both variants";
+    else
+      EXPECT_GT(changed, 0u) << ssao::name(estimator) << ": the fp16 emulation changed nothing";
   }
 }
 

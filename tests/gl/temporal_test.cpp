@@ -28,8 +28,8 @@ render::FrameSettings temporal_settings(int side) {
 std::vector<ssao::AoTexel> cpu_frame(const Harness& h) {
   const render::FrameSettings& settings = h.renderer.settings();
   const auto chain = ssao::build_depth_chain(h.renderer.read_linear_depth(), settings.width, settings.height);
-  return ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(), h.renderer.ssao_params(), h.renderer.inverse_far(),
-                              settings.ao_settings.estimator);
+  return ssao::reference_ssao(chain, h.renderer.read_view_normals(), h.renderer.read_view_face_normals(),
+                              h.renderer.ssao_params(), h.renderer.inverse_far(), settings.ao_settings.estimator);
 }
 
 double mean_abs(const std::vector<glm::vec2>& a, const std::vector<glm::vec2>& b, float* worst = nullptr) {
@@ -118,7 +118,9 @@ TEST_P(Temporal, AnUncoveredFloorShowsNoGhostOfTheBoxThatHidItLast) {
     const float change = std::abs(depth_after[i] - depth_before[i]) / depth_after[i];
     if (depth_after[i] > depth_before[i] * 1.05f) {  // was the box, is the floor now
       ++uncovered;
-      EXPECT_EQ(frames[i], 1.0f) << "texel " << i << " raw depth " << raw[i].y / h.renderer.inverse_far() << " after " << depth_after[i] << " before " << depth_before[i] << " avg g " << average[i].y / h.renderer.inverse_far();
+      EXPECT_EQ(frames[i], 1.0f) << "texel " << i << " raw depth " << raw[i].y / h.renderer.inverse_far() << " after "
+                                 << depth_after[i] << " before " << depth_before[i] << " avg g "
+                                 << average[i].y / h.renderer.inverse_far();
       EXPECT_EQ(average[i].x, raw[i].x) << "texel " << i;
     } else if (change < 1e-4f) {
       ++unchanged;

@@ -6,8 +6,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <chrono>
-#include <fstream>
 #include <cstdlib>
+#include <fstream>
 #include <thread>
 
 namespace {
@@ -29,7 +29,9 @@ render::FrameSettings settings_for(int width, int height) {
   return settings;
 }
 
-bool has_display() { return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr; }
+bool has_display() {
+  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
+}
 
 #define SKIP_WITHOUT_DISPLAY() \
   if (!has_display()) GTEST_SKIP() << "no DISPLAY: ctest runs the Window tests under xvfb-run (gl.window_under_xvfb)"
@@ -90,8 +92,7 @@ TEST(Window, RendersTheFrameHeadlessEglRenders) {
   int worst = 0;
   for (size_t p = 0; p < shown.size(); p += 4) {
     int pixel_worst = 0;
-    for (size_t c = 0; c < 4; ++c)
-      pixel_worst = std::max(pixel_worst, std::abs(int(shown[p + c]) - int(expected[p + c])));
+    for (size_t c = 0; c < 4; ++c) pixel_worst = std::max(pixel_worst, std::abs(int(shown[p + c]) - int(expected[p + c])));
     worst = std::max(worst, pixel_worst);
     differing += pixel_worst > 0 ? 1 : 0;
     diff[p] = static_cast<uint8_t>(std::min(255, pixel_worst * 64));
@@ -99,17 +100,16 @@ TEST(Window, RendersTheFrameHeadlessEglRenders) {
   }
   const bool same_encoding = window_srgb == egl.platform->srgb_framebuffer();
   const size_t pixels = shown.size() / 4;
-  std::cout << "window sRGB framebuffer: " << window_srgb << ", egl: " << egl.platform->srgb_framebuffer()
-            << "; max difference " << worst << "/255 in " << differing << " of " << pixels << " pixels\n";
+  std::cout << "window sRGB framebuffer: " << window_srgb << ", egl: " << egl.platform->srgb_framebuffer() << "; max difference "
+            << worst << "/255 in " << differing << " of " << pixels << " pixels\n";
   const int allowed = same_encoding ? 0 : kMaxChannelDifference;
   if (worst > allowed) {
     const std::string base = std::string(PLAYER_TEST_OUTPUT_DIR) + "/window_demo";
     write_png(base + ".actual.png", settings.width, settings.height, shown);
     write_png(base + ".expected.png", settings.width, settings.height, expected);
     write_png(base + ".diff.png", settings.width, settings.height, diff);
-    ADD_FAILURE() << "the window's frame differs from headless EGL's by up to " << worst << "/255 (allowed " << allowed
-                  << ") in " << differing << " of " << pixels << " pixels; see " << base
-                  << ".actual.png, .expected.png and .diff.png";
+    ADD_FAILURE() << "the window's frame differs from headless EGL's by up to " << worst << "/255 (allowed " << allowed << ") in "
+                  << differing << " of " << pixels << " pixels; see " << base << ".actual.png, .expected.png and .diff.png";
   }
 }
 
@@ -201,7 +201,8 @@ TEST(WindowOverlay, PlayShowsTheLedPanelInTheCornerOnly) {
     std::ofstream playlist(dir + "/still.toml");
     playlist << "[[item]]\nscene = \"builtin:demo\"\ncamera = { motion = \"still\" }\n";
   }
-  ASSERT_EQ(std::system((std::string(PLAYER_BINARY) + common + " --platform window --out " + dir + "/window > /dev/null").c_str()), 0);
+  ASSERT_EQ(
+      std::system((std::string(PLAYER_BINARY) + common + " --platform window --out " + dir + "/window > /dev/null").c_str()), 0);
   ASSERT_EQ(std::system((std::string(PLAYER_BINARY) + common + " --platform egl --out " + dir + "/egl > /dev/null").c_str()), 0);
   int w = 0, h = 0, ew = 0, eh = 0;
   const auto window = read_png(dir + "/window/frame-000009.png", w, h);
@@ -217,8 +218,10 @@ TEST(WindowOverlay, PlayShowsTheLedPanelInTheCornerOnly) {
       for (int c = 0; c < 3; ++c) difference = std::max(difference, std::abs(window[i + c] - egl[i + c]));
       const bool in_panel = x >= 6 && x < 200 && y >= 6 && y < 6 + 2 * 6 + 3 * 20;
       const bool near_panel = x < 260 && y < 100;  // its exact width follows the longest line
-      if (in_panel) panel_changed += difference > 8 ? 1 : 0;
-      else if (!near_panel && difference > 1) ++outside_off;
+      if (in_panel)
+        panel_changed += difference > 8 ? 1 : 0;
+      else if (!near_panel && difference > 1)
+        ++outside_off;
     }
   EXPECT_GT(panel_changed, 194u * 84u / 2) << "the panel is not there";
   EXPECT_EQ(outside_off, 0u);

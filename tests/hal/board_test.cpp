@@ -48,17 +48,18 @@ height = 480
 frame_timeout_ms = 500
 [mock]
 button_script = "buttons.script"
-)", "/etc/player/board.toml");
+)",
+                                    "/etc/player/board.toml");
   ASSERT_EQ(b.buttons.size(), 2u);
   EXPECT_EQ(b.buttons[0].line.line_name, "GPIO17");
   EXPECT_TRUE(b.buttons[0].line.active_low);
-  EXPECT_EQ(b.buttons[0].line.bias, Bias::PullUp);
+  EXPECT_EQ(b.buttons[0].line.bias, Bias::pull_up);
   EXPECT_EQ(b.buttons[0].timing.debounce, std::chrono::milliseconds(30));
   EXPECT_EQ(b.buttons[1].line.describe(), "gpiochip0:27");
   EXPECT_EQ(b.buttons[1].timing.repeat_delay, std::chrono::milliseconds(400));
   ASSERT_EQ(b.leds.size(), 1u);
   ASSERT_TRUE(b.camera.has_value());
-  EXPECT_EQ(b.camera->format, PixelFormat::Yuyv);
+  EXPECT_EQ(b.camera->format, PixelFormat::yuyv);
   EXPECT_EQ(b.camera->width, 640);
   EXPECT_EQ(b.camera->frame_timeout, std::chrono::milliseconds(500));
   EXPECT_EQ(b.camera->reopen_interval, std::chrono::milliseconds(2000));
@@ -67,7 +68,8 @@ button_script = "buttons.script"
 }
 
 TEST(Board, ErrorsNameFileFieldAndExpectation) {
-  EXPECT_EQ(error_of("[[button]]\nname = \"a\"\n"), "b.toml: button[0].line: expected a line name, or 'chip' and 'offset', got nothing");
+  EXPECT_EQ(error_of("[[button]]\nname = \"a\"\n"),
+            "b.toml: button[0].line: expected a line name, or 'chip' and 'offset', got nothing");
   EXPECT_EQ(error_of("[[button]]\nname = \"a\"\nchip = \"gpiochip0\"\noffset = \"x\"\n"),
             "b.toml: button[0].offset: expected an integer in 0..1023, got string");
   EXPECT_EQ(error_of("[[led]]\nname = \"a\"\nline = \"L\"\nbias = \"up\"\n"),

@@ -30,7 +30,8 @@ inline std::vector<ButtonEvent> wait_events(Buttons& b, std::size_t n,
 // "[next Press, next Release]", for failure messages.
 inline std::string describe(const std::vector<ButtonEvent>& events, const Buttons& b) {
   std::string s;
-  for (const ButtonEvent& e : events) s += (s.empty() ? "" : ", ") + std::string(b.name(e.button)) + " " + std::string(to_string(e.action));
+  for (const ButtonEvent& e : events)
+    s += (s.empty() ? "" : ", ") + std::string(b.name(e.button)) + " " + std::string(to_string(e.action));
   return "[" + s + "]";
 }
 

@@ -32,8 +32,8 @@ std::vector<Rec> run(MockButtons& b, ManualClock& clock, long long until_ms) {
     clock.advance(milliseconds(1));
     for (std::size_t n; (n = b.read(ev)) > 0;)
       for (std::size_t i = 0; i < n; ++i)
-        out.push_back({std::string(b.name(ev[i].button)), ev[i].action,
-                       std::chrono::duration_cast<milliseconds>(ev[i].time).count()});
+        out.push_back(
+            {std::string(b.name(ev[i].button)), ev[i].action, std::chrono::duration_cast<milliseconds>(ev[i].time).count()});
   }
   return out;
 }
@@ -50,7 +50,7 @@ TEST(Buttons, BounceIsFilteredAndTimestampIsWhenTheLevelSettled) {
                                     "bounce"),
                 clock);
   const auto events = run(b, clock, 500);
-  EXPECT_EQ(events, (std::vector<Rec>{{"play", ButtonAction::Press, 106}, {"play", ButtonAction::Release, 309}}));
+  EXPECT_EQ(events, (std::vector<Rec>{{"play", ButtonAction::press, 106}, {"play", ButtonAction::release, 309}}));
 }
 
 TEST(Buttons, PulseShorterThanDebounceIsIgnored) {
@@ -63,46 +63,44 @@ TEST(Buttons, EventIsNotReportedBeforeTheDebounceTimeHasPassed) {
   ManualClock clock;
   MockButtons b({{"play", timing(20, 0)}}, parse_button_script("100 play press\n", "s"), clock);
   EXPECT_TRUE(run(b, clock, 119).empty());
-  EXPECT_EQ(run(b, clock, 121), (std::vector<Rec>{{"play", ButtonAction::Press, 100}}));
+  EXPECT_EQ(run(b, clock, 121), (std::vector<Rec>{{"play", ButtonAction::press, 100}}));
 }
 
 TEST(Buttons, LongPressFiresOnceAtItsDeadlineWhileHeld) {
   ManualClock clock;
   MockButtons b({{"check", timing(10, 800)}},
-                parse_button_script("100 check press\n1500 check release\n2000 check press\n2300 check release\n", "s"),
-                clock);
-  EXPECT_EQ(run(b, clock, 2600), (std::vector<Rec>{{"check", ButtonAction::Press, 100},
-                                                   {"check", ButtonAction::LongPress, 900},
-                                                   {"check", ButtonAction::Release, 1500},
-                                                   {"check", ButtonAction::Press, 2000},
-                                                   {"check", ButtonAction::Release, 2300}}));
+                parse_button_script("100 check press\n1500 check release\n2000 check press\n2300 check release\n", "s"), clock);
+  EXPECT_EQ(run(b, clock, 2600), (std::vector<Rec>{{"check", ButtonAction::press, 100},
+                                                   {"check", ButtonAction::long_press, 900},
+                                                   {"check", ButtonAction::release, 1500},
+                                                   {"check", ButtonAction::press, 2000},
+                                                   {"check", ButtonAction::release, 2300}}));
 }
 
 TEST(Buttons, AutoRepeatStartsAfterDelayAndStopsOnRelease) {
   ManualClock clock;
   MockButtons b({{"next", timing(10, 0, 400, 100)}}, parse_button_script("0 next press\n650 next release\n", "s"), clock);
-  EXPECT_EQ(run(b, clock, 1000), (std::vector<Rec>{{"next", ButtonAction::Press, 0},
-                                                   {"next", ButtonAction::Repeat, 400},
-                                                   {"next", ButtonAction::Repeat, 500},
-                                                   {"next", ButtonAction::Repeat, 600},
-                                                   {"next", ButtonAction::Release, 650}}));
+  EXPECT_EQ(run(b, clock, 1000), (std::vector<Rec>{{"next", ButtonAction::press, 0},
+                                                   {"next", ButtonAction::repeat, 400},
+                                                   {"next", ButtonAction::repeat, 500},
+                                                   {"next", ButtonAction::repeat, 600},
+                                                   {"next", ButtonAction::release, 650}}));
 }
 
 TEST(Buttons, LongPressAndAutoRepeatTogetherOnOneButton) {
   ManualClock clock;
-  MockButtons b({{"next", timing(10, 800, 400, 100)}}, parse_button_script("0 next press\n1050 next release\n", "s"),
-                clock);
+  MockButtons b({{"next", timing(10, 800, 400, 100)}}, parse_button_script("0 next press\n1050 next release\n", "s"), clock);
   // Repeats keep their rhythm through the long press; at a tie the long press comes first.
-  EXPECT_EQ(run(b, clock, 1300), (std::vector<Rec>{{"next", ButtonAction::Press, 0},
-                                                   {"next", ButtonAction::Repeat, 400},
-                                                   {"next", ButtonAction::Repeat, 500},
-                                                   {"next", ButtonAction::Repeat, 600},
-                                                   {"next", ButtonAction::Repeat, 700},
-                                                   {"next", ButtonAction::LongPress, 800},
-                                                   {"next", ButtonAction::Repeat, 800},
-                                                   {"next", ButtonAction::Repeat, 900},
-                                                   {"next", ButtonAction::Repeat, 1000},
-                                                   {"next", ButtonAction::Release, 1050}}));
+  EXPECT_EQ(run(b, clock, 1300), (std::vector<Rec>{{"next", ButtonAction::press, 0},
+                                                   {"next", ButtonAction::repeat, 400},
+                                                   {"next", ButtonAction::repeat, 500},
+                                                   {"next", ButtonAction::repeat, 600},
+                                                   {"next", ButtonAction::repeat, 700},
+                                                   {"next", ButtonAction::long_press, 800},
+                                                   {"next", ButtonAction::repeat, 800},
+                                                   {"next", ButtonAction::repeat, 900},
+                                                   {"next", ButtonAction::repeat, 1000},
+                                                   {"next", ButtonAction::release, 1050}}));
   EXPECT_EQ(b.dropped(), 0u);
 }
 
@@ -117,20 +115,19 @@ std::vector<ButtonEvent> read_all(Buttons& b) {
 TEST(Buttons, FullQueueDropsRepeatsFirstKeepsPressLongPressAndRelease) {
   ManualClock clock;
   // Held 5 s with a repeat every 10 ms: about 500 events, far more than the queue holds.
-  MockButtons b({{"next", timing(1, 800, 10, 10)}}, parse_button_script("0 next press\n5000 next release\n", "s"),
-                clock);
+  MockButtons b({{"next", timing(1, 800, 10, 10)}}, parse_button_script("0 next press\n5000 next release\n", "s"), clock);
   clock.set(milliseconds(6000));
   const std::vector<ButtonEvent> got = read_all(b);
   // At 10, 20, ... 5000: the release counts only once its 1 ms debounce has passed.
   const std::size_t repeats = (5000 - 10) / 10 + 1;
-  const std::size_t produced = repeats + 3;          // press, long press, release
+  const std::size_t produced = repeats + 3;  // press, long press, release
   ASSERT_EQ(got.size(), 256u);
   EXPECT_EQ(b.dropped(), produced - got.size());
-  EXPECT_EQ(got.front().action, ButtonAction::Press);
-  EXPECT_EQ(got[1].action, ButtonAction::LongPress);
-  EXPECT_EQ(got.back().action, ButtonAction::Release);
+  EXPECT_EQ(got.front().action, ButtonAction::press);
+  EXPECT_EQ(got[1].action, ButtonAction::long_press);
+  EXPECT_EQ(got.back().action, ButtonAction::release);
   EXPECT_EQ(got.back().time, milliseconds(5000));
-  for (std::size_t i = 2; i + 1 < got.size(); ++i) EXPECT_EQ(got[i].action, ButtonAction::Repeat) << i;
+  for (std::size_t i = 2; i + 1 < got.size(); ++i) EXPECT_EQ(got[i].action, ButtonAction::repeat) << i;
   // The oldest repeats went: the ones kept are the latest, still in time order.
   EXPECT_EQ(got[got.size() - 2].time, milliseconds(5000));
   EXPECT_EQ(got[2].time, milliseconds(5000 - 10 * 252));
@@ -152,13 +149,13 @@ TEST(Buttons, FullQueueNeverLeavesAButtonLookingHeld) {
   // Replaying what the app saw: "a" ends released, "b" (never released) ends held.
   std::array<bool, 2> held{};
   for (const ButtonEvent& e : got) {
-    if (e.action == ButtonAction::Press) held[e.button] = true;
-    if (e.action == ButtonAction::Release) held[e.button] = false;
+    if (e.action == ButtonAction::press) held[e.button] = true;
+    if (e.action == ButtonAction::release) held[e.button] = false;
   }
   EXPECT_FALSE(held[0]);
   EXPECT_TRUE(held[1]);
   EXPECT_EQ(got.front().button, 1);
-  EXPECT_EQ(got.back().action, ButtonAction::Release);
+  EXPECT_EQ(got.back().action, ButtonAction::release);
   EXPECT_EQ(got.back().time, milliseconds(15 + 10 * 299));
   for (std::size_t i = 1; i < got.size(); ++i) EXPECT_LE(got[i - 1].time, got[i].time) << i;
 }
@@ -172,9 +169,9 @@ TEST(Buttons, EventsOfSeveralButtonsComeOutInTimeOrderEvenWhenReadLate) {
   const std::size_t n = b.read(ev);
   ASSERT_EQ(n, 6u);
   for (std::size_t i = 1; i < n; ++i) EXPECT_LE(ev[i - 1].time, ev[i].time) << i;
-  EXPECT_EQ(ev[1].action, ButtonAction::Press);
+  EXPECT_EQ(ev[1].action, ButtonAction::press);
   EXPECT_EQ(ev[1].button, 1);
-  EXPECT_EQ(ev[2].action, ButtonAction::LongPress);
+  EXPECT_EQ(ev[2].action, ButtonAction::long_press);
   EXPECT_EQ(ev[2].time, milliseconds(150));
 }
 
@@ -184,7 +181,7 @@ TEST(Buttons, InjectedKeysGoThroughTheSameDebounce) {
   clock.set(milliseconds(10));
   b.inject(0, true);
   EXPECT_TRUE(run(b, clock, 25).empty());
-  EXPECT_EQ(run(b, clock, 40), (std::vector<Rec>{{"play", ButtonAction::Press, 10}}));
+  EXPECT_EQ(run(b, clock, 40), (std::vector<Rec>{{"play", ButtonAction::press, 10}}));
 }
 
 TEST(Buttons, ScriptErrorsNameFileLineAndField) {
@@ -217,8 +214,9 @@ TEST(Buttons, ScriptTimeBeyondWhatTheClockHoldsIsRefused) {
     parse_button_script(text.str(), "time_beyond_nanoseconds.script");
     ADD_FAILURE() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_STREQ(e.what(), "time_beyond_nanoseconds.script:2: time: expected at most 3153600000000 milliseconds (100 years), "
-                           "got 9223372036854775807");
+    EXPECT_STREQ(e.what(),
+                 "time_beyond_nanoseconds.script:2: time: expected at most 3153600000000 milliseconds (100 years), "
+                 "got 9223372036854775807");
   }
   EXPECT_EQ(parse_button_script("3153600000000 play press\n", "s").back().at, std::chrono::milliseconds(3153600000000));
 }

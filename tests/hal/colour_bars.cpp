@@ -42,9 +42,9 @@ std::vector<std::string> colour_bar_mismatches(const RgbImage& frame, int tolera
     if (!off) continue;
     const auto& want = kVividBars[bar].rgb;
     mismatches.push_back("bar " + std::to_string(bar) + " (" + kVividBars[bar].name + ") at (" + std::to_string(cx) + ", " +
-                         std::to_string(cy) + "): expected RGB " + std::to_string(want[0]) + " " + std::to_string(want[1]) +
-                         " " + std::to_string(want[2]) + " within " + std::to_string(tolerance) + ", got " +
-                         std::to_string(mean[0]) + " " + std::to_string(mean[1]) + " " + std::to_string(mean[2]));
+                         std::to_string(cy) + "): expected RGB " + std::to_string(want[0]) + " " + std::to_string(want[1]) + " " +
+                         std::to_string(want[2]) + " within " + std::to_string(tolerance) + ", got " + std::to_string(mean[0]) +
+                         " " + std::to_string(mean[1]) + " " + std::to_string(mean[2]));
   }
   return mismatches;
 }

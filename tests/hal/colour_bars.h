@@ -19,13 +19,13 @@ struct Bar {
   std::array<std::uint8_t, 3> rgb;
 };
 inline constexpr std::array<Bar, 8> kVividBars = {{{"white", {191, 191, 191}},
-                                                  {"yellow", {191, 191, 0}},
-                                                  {"cyan", {0, 191, 191}},
-                                                  {"green", {0, 191, 0}},
-                                                  {"magenta", {191, 0, 191}},
-                                                  {"red", {191, 0, 0}},
-                                                  {"blue", {0, 0, 191}},
-                                                  {"black", {0, 0, 0}}}};
+                                                   {"yellow", {191, 191, 0}},
+                                                   {"cyan", {0, 191, 191}},
+                                                   {"green", {0, 191, 0}},
+                                                   {"magenta", {191, 0, 191}},
+                                                   {"red", {191, 0, 0}},
+                                                   {"blue", {0, 0, 191}},
+                                                   {"black", {0, 0, 0}}}};
 
 // Draws the pattern: what a perfect capture of vivid looks like.
 RgbImage vivid_bars(int width, int height);

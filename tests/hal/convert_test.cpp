@@ -18,9 +18,9 @@ struct YuvCase {
   std::uint8_t r, g, b;
 };
 constexpr YuvCase kBars[] = {
-    {16, 128, 128, 0, 0, 0},       {235, 128, 128, 255, 255, 255}, {126, 128, 128, 128, 128, 128},
-    {81, 90, 240, 255, 0, 0},      {145, 54, 34, 0, 255, 0},       {41, 240, 110, 0, 0, 255},
-    {210, 16, 146, 255, 255, 0},   {170, 166, 16, 0, 255, 255},    {106, 202, 222, 255, 0, 255},
+    {16, 128, 128, 0, 0, 0},     {235, 128, 128, 255, 255, 255}, {126, 128, 128, 128, 128, 128},
+    {81, 90, 240, 255, 0, 0},    {145, 54, 34, 0, 255, 0},       {41, 240, 110, 0, 0, 255},
+    {210, 16, 146, 255, 255, 0}, {170, 166, 16, 0, 255, 255},    {106, 202, 222, 255, 0, 255},
 };
 
 TEST(Convert, YuyvColourBars) {
@@ -39,8 +39,8 @@ TEST(Convert, YuyvColourBars) {
 }
 
 TEST(Convert, YuyvUsesEachPixelsOwnLumaAndRespectsStride) {
-  const std::uint8_t src[] = {16, 128, 235, 128, 0, 0,  // row 0: black, white, padding
-                              235, 128, 16, 128, 0, 0};
+  const std::uint8_t src[] = {16,  128, 235, 128, 0, 0,  // row 0: black, white, padding
+                              235, 128, 16,  128, 0, 0};
   RgbImage out(2, 2);
   yuyv_to_rgb(src, 2, 2, 6, out);
   EXPECT_EQ(out.at(0, 0)[1], 0);
@@ -101,7 +101,8 @@ std::vector<std::uint8_t> strip_huffman_tables(const std::vector<std::uint8_t>& 
       break;
     }
     const std::size_t len = 2 + ((jpeg[i + 2] << 8) | jpeg[i + 3]);
-    if (jpeg[i + 1] != 0xC4) out.insert(out.end(), jpeg.begin() + static_cast<long>(i), jpeg.begin() + static_cast<long>(i + len));
+    if (jpeg[i + 1] != 0xC4)
+      out.insert(out.end(), jpeg.begin() + static_cast<long>(i), jpeg.begin() + static_cast<long>(i + len));
     i += len;
   }
   return out;

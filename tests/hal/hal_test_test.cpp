@@ -61,8 +61,7 @@ TEST(HalTest, BoardFileWithoutHalChecksTheRealDevices) {
   o.duration_s = 0.05;
   std::ostringstream out;
   EXPECT_EQ(run_hal_test(o, out), 2) << out.str();
-  EXPECT_EQ(out.str().rfind("backend: linux (--board without --hal; --hal mock simulates the board)\n", 0), 0u)
-      << out.str();
+  EXPECT_EQ(out.str().rfind("backend: linux (--board without --hal; --hal mock simulates the board)\n", 0), 0u) << out.str();
   EXPECT_NE(out.str().find("MISSING: LED 'status': GPIO line NO_SUCH_LED_LINE"), std::string::npos) << out.str();
   // The same board with --hal mock: every device is a mock, so all are present.
   o.backend = "mock";

@@ -14,8 +14,8 @@
 #include <fstream>
 #include <map>
 
-#include "gpio_devices.h"
 #include "button_events.h"
+#include "gpio_devices.h"
 #include "hal/devices.h"
 #include "keyboards_evdev.h"
 
@@ -33,12 +33,23 @@ TEST(KeyNames, EvdevKeysHaveTheWindowPlatformsNames) {
   // The board defaults' keys, then keys whose evdev and SDL names differ (the window platform writes
   // SDL's names in lower case, '-' for ' ').
   const std::map<unsigned, std::string> expected = {
-      {KEY_SPACE, "space"},       {KEY_N, "n"},          {KEY_P, "p"},
-      {KEY_C, "c"},               {KEY_RIGHT, "right"},  {KEY_F11, "f11"},
-      {KEY_1, "1"},               {KEY_PAGEDOWN, "pagedown"}, {KEY_ENTER, "return"},
-      {KEY_ESC, "escape"},        {KEY_LEFTCTRL, "left-ctrl"}, {KEY_RIGHTMETA, "right-gui"},
-      {KEY_KP1, "keypad-1"},      {KEY_KPENTER, "keypad-enter"}, {KEY_MINUS, "-"},
-      {KEY_PLAYPAUSE, "audioplay"}, {KEY_NEXTSONG, "audionext"},
+      {KEY_SPACE, "space"},
+      {KEY_N, "n"},
+      {KEY_P, "p"},
+      {KEY_C, "c"},
+      {KEY_RIGHT, "right"},
+      {KEY_F11, "f11"},
+      {KEY_1, "1"},
+      {KEY_PAGEDOWN, "pagedown"},
+      {KEY_ENTER, "return"},
+      {KEY_ESC, "escape"},
+      {KEY_LEFTCTRL, "left-ctrl"},
+      {KEY_RIGHTMETA, "right-gui"},
+      {KEY_KP1, "keypad-1"},
+      {KEY_KPENTER, "keypad-enter"},
+      {KEY_MINUS, "-"},
+      {KEY_PLAYPAUSE, "audioplay"},
+      {KEY_NEXTSONG, "audionext"},
   };
   for (const auto& [code, name] : expected) EXPECT_EQ(detail::board_key_name(code), name) << "code " << code;
 }
@@ -62,7 +73,7 @@ TEST(KeyNames, EveryNameIsOneKey) {
 }
 
 class NoKeys final : public detail::KeySink {
-public:
+ public:
   std::size_t calls = 0;
   void key(std::size_t, bool, Nanos) override { ++calls; }
 };
@@ -114,7 +125,7 @@ std::string uinput_skip_reason() {
 
 // A virtual USB keyboard: appears in /dev/input when made, disappears when unplugged.
 class VirtualKeyboard {
-public:
+ public:
   ~VirtualKeyboard() {
     unplug();
     if (dev_) libevdev_free(dev_);
@@ -142,11 +153,10 @@ public:
     ui_ = nullptr;
   }
 
-private:
+ private:
   libevdev* dev_ = nullptr;
   libevdev_uinput* ui_ = nullptr;
 };
-
 
 // Runs the buttons' read loop until `n` keyboards are open (a keyboard is only heard once open).
 bool wait_keyboards(detail::EdgeButtons& b, std::size_t n) {
@@ -159,7 +169,6 @@ bool wait_keyboards(detail::EdgeButtons& b, std::size_t n) {
   }
   return b.keyboards_open() == n;
 }
-
 
 const char* const kKeyboardBoard = R"(
 [buttons]
@@ -179,7 +188,7 @@ long_press_ms = 0
 // Keyboards the machine has already (QEMU's PS/2 keyboard in the vm tier) with the board's keys.
 std::size_t keyboards_present(const char* board) {
   MonotonicClock clock;
-  Devices d = open_devices(parse_board(board, "keyboard-board.toml"), Backend::Linux, clock);
+  Devices d = open_devices(parse_board(board, "keyboard-board.toml"), Backend::linux_kernel, clock);
   return dynamic_cast<detail::EdgeButtons&>(*d.buttons).keyboards_open();
 }
 
@@ -189,7 +198,7 @@ TEST(Hardware, UinputKeyboardPressesTheButtonOfItsKey) {
   VirtualKeyboard first;
   ASSERT_EQ(first.plug_in("hal-test keyboard 1"), "");
   MonotonicClock clock;
-  Devices d = open_devices(parse_board(kKeyboardBoard, "keyboard-board.toml"), Backend::Linux, clock);
+  Devices d = open_devices(parse_board(kKeyboardBoard, "keyboard-board.toml"), Backend::linux_kernel, clock);
   // The lines are missing (reported), the keys still work.
   ASSERT_EQ(d.problems.size(), 2u) << d.problems[0];
   auto* b = dynamic_cast<detail::EdgeButtons*>(d.buttons.get());
@@ -207,9 +216,9 @@ TEST(Hardware, UinputKeyboardPressesTheButtonOfItsKey) {
   ev.insert(ev.end(), rest.begin(), rest.end());
   ASSERT_EQ(ev.size(), 2u) << describe(ev, *b);
   EXPECT_EQ(b->name(ev[0].button), "next");
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
   EXPECT_EQ(ev[1].button, ev[0].button);
-  EXPECT_EQ(ev[1].action, ButtonAction::Release);
+  EXPECT_EQ(ev[1].action, ButtonAction::release);
   // Kernel timestamps on hal's clock (CLOCK_MONOTONIC), not the wall clock's decades away.
   EXPECT_LT(ev[1].time, clock.now());
   EXPECT_GT(ev[0].time, clock.now() - seconds(60));
@@ -226,7 +235,7 @@ TEST(Hardware, UinputKeyboardPressesTheButtonOfItsKey) {
   ev = wait_events(*b, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, *b);
   EXPECT_EQ(b->name(ev[0].button), "play");
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
 
   // The first one unplugged: the second, holding space, goes on; then it is pulled out with space
   // still down, which lets play go.
@@ -236,7 +245,7 @@ TEST(Hardware, UinputKeyboardPressesTheButtonOfItsKey) {
   ev = wait_events(*b, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, *b);
   EXPECT_EQ(b->name(ev[0].button), "play");
-  EXPECT_EQ(ev[0].action, ButtonAction::Release);
+  EXPECT_EQ(ev[0].action, ButtonAction::release);
   EXPECT_EQ(b->keyboards_open(), present);
   EXPECT_EQ(b->last_error(), "") << "an unplugged keyboard is no failure";
   std::array<ButtonEvent, 4> none;
@@ -289,7 +298,7 @@ long_press_ms = 0
   VirtualKeyboard keyboard;
   ASSERT_EQ(keyboard.plug_in("hal-test keyboard"), "");
   MonotonicClock clock;
-  Devices d = open_devices(parse_board(board, "key-and-line.toml"), Backend::Linux, clock);
+  Devices d = open_devices(parse_board(board, "key-and-line.toml"), Backend::linux_kernel, clock);
   ASSERT_TRUE(d.problems.empty()) << d.problems[0];
   auto* b = dynamic_cast<detail::EdgeButtons*>(d.buttons.get());
   ASSERT_NE(b, nullptr);
@@ -298,7 +307,7 @@ long_press_ms = 0
   ASSERT_TRUE(put(attr("pull"), "pull-up"));  // the line pressed
   std::vector<ButtonEvent> ev = wait_events(*b, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, *b);
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
   keyboard.key(KEY_N, 1);  // the key too; read before the line moves, as a person's hands would
   pollfd p{b->fd(), POLLIN, 0};
   ASSERT_EQ(poll(&p, 1, 10'000), 1) << "the key press never reached the buttons' fd";
@@ -314,7 +323,7 @@ long_press_ms = 0
   keyboard.key(KEY_N, 0);
   ev = wait_events(*b, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, *b);
-  EXPECT_EQ(ev[0].action, ButtonAction::Release);
+  EXPECT_EQ(ev[0].action, ButtonAction::release);
   EXPECT_GE(ev[0].time, line_released) << "released before the key let go";
   EXPECT_EQ(b->read(none), 0u);
 }

@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "button_events.h"
 #include "camera_schedule.h"
 #include "colour_bars.h"
 #include "gpio_devices.h"
-#include "button_events.h"
 #include "hal/devices.h"
 #include "hal/mock.h"
 
@@ -36,7 +36,8 @@ TEST(LinuxGpio, MissingChipIsNamedAndTheOtherButtonsStillWork) {
   cfg[1].line.line_name = "NO_SUCH_LINE_NAME";
   auto buttons = open_gpio_buttons(cfg, "hal-test", clock, problems);
   ASSERT_EQ(problems.size(), 2u);
-  EXPECT_EQ(problems[0].rfind("button 'play': GPIO chip 'gpiochip-does-not-exist' for gpiochip-does-not-exist:3: cannot open", 0), 0u)
+  EXPECT_EQ(problems[0].rfind("button 'play': GPIO chip 'gpiochip-does-not-exist' for gpiochip-does-not-exist:3: cannot open", 0),
+            0u)
       << problems[0];
   EXPECT_EQ(problems[1].rfind("button 'next': GPIO line NO_SUCH_LINE_NAME: no chip has a line of that name", 0), 0u)
       << problems[1];
@@ -71,8 +72,8 @@ TEST(LinuxGpio, MissingLedIsNamedAndSettingItIsHarmless) {
   // The player drives them through a Status: patterns and levels carry on as if the LEDs were there.
   ManualClock clock;
   Status status({"status", "error"}, std::move(leds), clock, "");
-  status.set_pattern(0, LedPattern::BlinkFast);
-  status.set_pattern(1, LedPattern::On);
+  status.set_pattern(0, LedPattern::blink_fast);
+  status.set_pattern(1, LedPattern::on);
   EXPECT_TRUE(status.level(0));
   clock.advance(milliseconds(100));
   status.update();
@@ -84,11 +85,11 @@ TEST(LinuxGpio, MissingLedIsNamedAndSettingItIsHarmless) {
 // One LED missing at start, the other present: the missing one is never written (its line was
 // never requested), the present one gets every level.
 class HalfMissingLeds final : public detail::OutputLeds {
-public:
+ public:
   HalfMissingLeds() : OutputLeds({"LED 'status' (GPIO line GPIO23)", "LED 'error' (GPIO line GPIO24)"}) { disable(0); }
   std::vector<std::pair<std::size_t, bool>> writes;
 
-private:
+ private:
   int write(std::size_t led, bool on) override {
     writes.push_back({led, on});
     return 0;
@@ -134,13 +135,12 @@ TEST(LinuxGpio, FailedEventFdLeavesThePollSetReleasesTheButtonAndIsReported) {
 
   // The edge is read, then the fd fails: it leaves the poll set and the held button is let go.
   ASSERT_EQ(b.read(ev), 1u);
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
   EXPECT_EQ(ev[0].time, milliseconds(900));
-  EXPECT_EQ(b.last_error(),
-            "button 'play': GPIO line GPIO17: reading edge events: Input/output error; button disabled");
+  EXPECT_EQ(b.last_error(), "button 'play': GPIO line GPIO17: reading edge events: Input/output error; button disabled");
   clock.advance(milliseconds(100));
   ASSERT_EQ(b.read(ev), 1u);
-  EXPECT_EQ(ev[0].action, ButtonAction::Release);
+  EXPECT_EQ(ev[0].action, ButtonAction::release);
   EXPECT_EQ(ev[0].time, milliseconds(1000));
   // Nothing due and the dead fd gone: poll() sleeps instead of spinning.
   EXPECT_FALSE(readable(b.fd()));
@@ -150,12 +150,12 @@ TEST(LinuxGpio, FailedEventFdLeavesThePollSetReleasesTheButtonAndIsReported) {
 
 // GpioLeds' failure handling with the line write faked: the chip vanishes under LED 1.
 class FlakyLeds final : public detail::OutputLeds {
-public:
+ public:
   FlakyLeds() : OutputLeds({"LED 'status' (GPIO line GPIO23)", "LED 'error' (GPIO line GPIO24)"}) {}
   std::vector<std::pair<std::size_t, bool>> writes;
   bool chip_gone = false;
 
-private:
+ private:
   int write(std::size_t led, bool on) override {
     if (led == 1 && chip_gone) return ENODEV;
     writes.push_back({led, on});
@@ -168,8 +168,8 @@ TEST(LinuxGpio, FailingLedIsReportedOnceAndTheOthersRunOn) {
   auto sink = std::make_unique<FlakyLeds>();
   FlakyLeds& leds = *sink;
   Status status({"status", "error"}, std::move(sink), clock, "");
-  status.set_pattern(0, LedPattern::BlinkFast);
-  status.set_pattern(1, LedPattern::BlinkFast);
+  status.set_pattern(0, LedPattern::blink_fast);
+  status.set_pattern(1, LedPattern::blink_fast);
   EXPECT_TRUE(status.led_error().empty());
   leds.chip_gone = true;
   leds.writes.clear();
@@ -177,8 +177,7 @@ TEST(LinuxGpio, FailingLedIsReportedOnceAndTheOthersRunOn) {
     clock.advance(milliseconds(100));
     status.update();
   }
-  EXPECT_EQ(status.led_error(),
-            "LED 'error' (GPIO line GPIO24): set value: No such device (chip removed?); LED disabled");
+  EXPECT_EQ(status.led_error(), "LED 'error' (GPIO line GPIO24): set value: No such device (chip removed?); LED disabled");
   // LED 0 blinked on through every edge; LED 1 was not written again after it failed.
   using Writes = std::vector<std::pair<std::size_t, bool>>;
   EXPECT_EQ(leds.writes, (Writes{{0, false}, {0, true}, {0, false}, {0, true}, {0, false}}));
@@ -216,7 +215,7 @@ TEST(LinuxCamera, ReopenIsTimedByTheInjectedClock) {
   cfg.reopen_interval = milliseconds(5000);
   ManualClock clock(milliseconds(100'000));
   auto cam = open_v4l2_camera(cfg, clock);
-  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_EQ(cam->state(), CameraState::lost);
   EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory");
   std::ofstream(cfg.device) << "not a camera";  // the device appears, as when it is plugged back in
   clock.advance(milliseconds(4999));
@@ -224,9 +223,8 @@ TEST(LinuxCamera, ReopenIsTimedByTheInjectedClock) {
   EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory") << "reopened early";
   clock.advance(milliseconds(1));
   cam->service();
-  EXPECT_EQ(cam->state(), CameraState::Lost);
-  EXPECT_NE(cam->last_error().find("VIDIOC_QUERYCAP failed (not a V4L2 device?)"), std::string::npos)
-      << cam->last_error();
+  EXPECT_EQ(cam->state(), CameraState::lost);
+  EXPECT_NE(cam->last_error().find("VIDIOC_QUERYCAP failed (not a V4L2 device?)"), std::string::npos) << cam->last_error();
 }
 
 TEST(LinuxCamera, MissingDeviceIsLostNamedAndRetried) {
@@ -235,13 +233,13 @@ TEST(LinuxCamera, MissingDeviceIsLostNamedAndRetried) {
   cfg.reopen_interval = std::chrono::milliseconds(100);
   MonotonicClock clock;
   auto cam = open_v4l2_camera(cfg, clock);
-  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_EQ(cam->state(), CameraState::lost);
   EXPECT_EQ(cam->last_error(), cfg.device + ": cannot open camera: No such file or directory");
   RgbImage f;
   EXPECT_FALSE(cam->read_frame(f));
   // capture() waits for the reopen timer, retries, and gives up at its timeout without hanging.
   EXPECT_FALSE(cam->capture(f, std::chrono::milliseconds(250)));
-  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_EQ(cam->state(), CameraState::lost);
   EXPECT_NE(cam->last_error().find("No such file or directory"), std::string::npos);
 }
 
@@ -250,7 +248,7 @@ TEST(LinuxCamera, NonV4l2DeviceIsRejectedWithTheReason) {
   cfg.device = "/dev/null";
   MonotonicClock clock;
   auto cam = open_v4l2_camera(cfg, clock);
-  EXPECT_EQ(cam->state(), CameraState::Lost);
+  EXPECT_EQ(cam->state(), CameraState::lost);
   EXPECT_NE(cam->last_error().find("/dev/null: VIDIOC_QUERYCAP failed (not a V4L2 device?)"), std::string::npos)
       << cam->last_error();
 }
@@ -266,14 +264,15 @@ name = "status"
 line = "MISSING_LED"
 [camera]
 device = "/dev/video-missing"
-)", "degraded.toml");
+)",
+                                        "degraded.toml");
   MonotonicClock clock;
-  Devices d = open_devices(board, Backend::Linux, clock);
+  Devices d = open_devices(board, Backend::linux_kernel, clock);
   EXPECT_EQ(d.problems.size(), 3u);
   ASSERT_TRUE(d.buttons && d.status && d.camera);
-  d.status->set_pattern(0, LedPattern::BlinkFast);
+  d.status->set_pattern(0, LedPattern::blink_fast);
   d.status->update();
-  EXPECT_EQ(d.camera->state(), CameraState::Lost);
+  EXPECT_EQ(d.camera->state(), CameraState::lost);
 }
 
 // Hardware tier: the kernel's simulators (gpio-sim, vivid). Creating gpio-sim chips needs configfs
@@ -310,7 +309,7 @@ std::string gpio_sim_skip_reason() {
 
 // A gpio-sim chip with named lines, made through configfs for one test and removed with it.
 class GpioSim {
-public:
+ public:
   ~GpioSim() { remove(); }
   // "" when the chip is live, else what failed.
   std::string make(const std::vector<std::string>& line_names) {
@@ -341,7 +340,7 @@ public:
     return fs::path("/sys/devices/platform") / dev_name_ / chip_ / ("sim_gpio" + std::to_string(offset)) / name;
   }
 
-private:
+ private:
   void remove() {
     if (dir_.empty()) return;
     if (live_) write_attr(dir_ / "live", "0");
@@ -355,8 +354,6 @@ private:
   bool live_ = false;
   std::string chip_, dev_name_;
 };
-
-
 
 TEST(Hardware, GpioSimButtons) {
   if (const std::string why = gpio_sim_skip_reason(); !why.empty()) GTEST_SKIP() << why;
@@ -374,7 +371,7 @@ TEST(Hardware, GpioSimButtons) {
   ASSERT_EQ(write_attr(sim.attr(0, "pull"), "pull-up"), "");
   const std::vector<ButtonEvent> ev = wait_events(*buttons, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, *buttons);
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
 }
 
 // A board file's buttons and LEDs on real GPIO lines: open_devices with the linux backend finds the
@@ -407,9 +404,10 @@ line = "VM_LED_STATUS"
 name = "error"
 line = "VM_LED_ERROR"
 active_low = true
-)", "gpio-sim-board.toml");
+)",
+                                        "gpio-sim-board.toml");
   MonotonicClock clock;
-  Devices d = open_devices(board, Backend::Linux, clock);
+  Devices d = open_devices(board, Backend::linux_kernel, clock);
   ASSERT_TRUE(d.problems.empty()) << d.problems[0];
   Buttons& b = *d.buttons;
   ASSERT_EQ(b.count(), 2u);
@@ -426,14 +424,14 @@ active_low = true
   std::vector<ButtonEvent> ev = wait_events(b, 2);
   ASSERT_EQ(ev.size(), 2u) << describe(ev, b);
   EXPECT_EQ(ev[0].button, 0);
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
-  EXPECT_EQ(ev[1].action, ButtonAction::LongPress);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
+  EXPECT_EQ(ev[1].action, ButtonAction::long_press);
   EXPECT_EQ(ev[1].time - ev[0].time, std::chrono::milliseconds(300));
   ASSERT_EQ(write_attr(sim.attr(0, "pull"), "pull-up"), "");
   ev = wait_events(b, 1);
   ASSERT_EQ(ev.size(), 1u) << describe(ev, b);
   EXPECT_EQ(ev[0].button, 0);
-  EXPECT_EQ(ev[0].action, ButtonAction::Release);
+  EXPECT_EQ(ev[0].action, ButtonAction::release);
 
   // next: active high with a pull-down; a click, and no long press (long_press_ms = 0).
   ASSERT_EQ(write_attr(sim.attr(1, "pull"), "pull-up"), "");
@@ -443,9 +441,9 @@ active_low = true
   ev.insert(ev.end(), rest.begin(), rest.end());
   ASSERT_EQ(ev.size(), 2u) << describe(ev, b);
   EXPECT_EQ(ev[0].button, 1);
-  EXPECT_EQ(ev[0].action, ButtonAction::Press);
+  EXPECT_EQ(ev[0].action, ButtonAction::press);
   EXPECT_EQ(ev[1].button, 1);
-  EXPECT_EQ(ev[1].action, ButtonAction::Release);
+  EXPECT_EQ(ev[1].action, ButtonAction::release);
   EXPECT_LT(ev[0].time, ev[1].time);
   EXPECT_EQ(b.read(none), 0u);
   EXPECT_EQ(b.last_error(), "");
@@ -454,19 +452,19 @@ active_low = true
   Status& st = *d.status;
   ASSERT_EQ(st.led_count(), 2u);
   const fs::path status_value = sim.attr(2, "value"), error_value = sim.attr(3, "value");
-  st.set_pattern(0, LedPattern::On);
-  st.set_pattern(1, LedPattern::On);
+  st.set_pattern(0, LedPattern::on);
+  st.set_pattern(1, LedPattern::on);
   st.update();
   EXPECT_EQ(read_attr(status_value), "1");
   EXPECT_EQ(read_attr(error_value), "0");
-  st.set_pattern(0, LedPattern::Off);
-  st.set_pattern(1, LedPattern::Off);
+  st.set_pattern(0, LedPattern::off);
+  st.set_pattern(1, LedPattern::off);
   st.update();
   EXPECT_EQ(read_attr(status_value), "0");
   EXPECT_EQ(read_attr(error_value), "1");
   // A blink: each time the status timer fires, the line follows the pattern's level; four changes
   // are seen (at least two full on/off cycles).
-  st.set_pattern(0, LedPattern::BlinkFast);
+  st.set_pattern(0, LedPattern::blink_fast);
   st.update();
   EXPECT_EQ(read_attr(status_value), st.level(0) ? "1" : "0");
   int changes = 0;
@@ -502,7 +500,7 @@ TEST(Hardware, VividCapture) {
   const std::string node = vivid_capture_node();
   if (node.empty()) GTEST_SKIP() << "no vivid device (modprobe vivid; the vm tier runs this) and no /dev/video* from it";
   const std::string device = "/dev/" + node;
-  for (PixelFormat f : {PixelFormat::Yuyv, PixelFormat::Rgb24}) {
+  for (PixelFormat f : {PixelFormat::yuyv, PixelFormat::rgb24}) {
     CameraConfig cfg;
     cfg.device = device;
     cfg.width = 640;
@@ -510,7 +508,7 @@ TEST(Hardware, VividCapture) {
     cfg.format = f;
     MonotonicClock clock;
     auto cam = open_v4l2_camera(cfg, clock);
-    ASSERT_EQ(cam->state(), CameraState::Streaming) << cam->last_error();
+    ASSERT_EQ(cam->state(), CameraState::streaming) << cam->last_error();
     RgbImage frame;
     ASSERT_TRUE(cam->capture(frame, std::chrono::seconds(5))) << cam->last_error();
     EXPECT_EQ(frame.width, 640);
@@ -521,7 +519,7 @@ TEST(Hardware, VividCapture) {
     // margin for vivid's table. RGB24 arrives exact. A wrong bar is off by 64 or more in some
     // channel (75% against 100%), so the margin hides no wrong colour.
     const std::vector<std::string> mismatches = test::colour_bar_mismatches(frame, 8);
-    EXPECT_TRUE(mismatches.empty()) << (f == PixelFormat::Yuyv ? "YUYV" : "RGB24") << ": " << mismatches.size()
+    EXPECT_TRUE(mismatches.empty()) << (f == PixelFormat::yuyv ? "YUYV" : "RGB24") << ": " << mismatches.size()
                                     << " bars wrong, first: " << (mismatches.empty() ? "" : mismatches[0]);
   }
 }
@@ -576,11 +574,12 @@ height = 480
 format = "yuyv"
 reopen_interval_ms = 500
 frame_timeout_ms = 5000
-)", "vivid-board.toml");
+)",
+                                        "vivid-board.toml");
   // A manual clock decides when the reopen is due, so the test checks the interval exactly; it starts
   // at the real monotonic time so the camera's timerfd deadlines are near, not decades away.
   ManualClock clock(MonotonicClock().now());
-  Devices d = open_devices(board, Backend::Linux, clock);
+  Devices d = open_devices(board, Backend::linux_kernel, clock);
   ASSERT_TRUE(d.problems.empty()) << d.problems[0];
   Camera& cam = *d.camera;
   RgbImage frame;
@@ -590,8 +589,8 @@ frame_timeout_ms = 5000
   Rebind rebind{platform_device};
   ASSERT_EQ(write_attr("/sys/bus/platform/drivers/vivid/unbind", platform_device), "");
   rebind.unbound = true;
-  pump(cam, [&] { return cam.state() != CameraState::Streaming; });
-  ASSERT_EQ(cam.state(), CameraState::Lost) << cam.last_error();
+  pump(cam, [&] { return cam.state() != CameraState::streaming; });
+  ASSERT_EQ(cam.state(), CameraState::lost) << cam.last_error();
   EXPECT_EQ(cam.last_error().rfind(device + ": VIDIOC_DQBUF: No such device (camera unplugged?); retrying", 0), 0u)
       << cam.last_error();
   EXPECT_FALSE(holds_fd_on(device)) << "the lost camera still holds its device open";
@@ -599,7 +598,7 @@ frame_timeout_ms = 5000
   // Unplugged: the try one interval later fails (the node is gone) and schedules the next.
   clock.advance(std::chrono::milliseconds(500));
   cam.service();
-  EXPECT_EQ(cam.state(), CameraState::Lost);
+  EXPECT_EQ(cam.state(), CameraState::lost);
   EXPECT_EQ(cam.last_error(), device + ": cannot open camera: No such file or directory");
 
   ASSERT_EQ(write_attr("/sys/bus/platform/drivers/vivid/bind", platform_device), "");
@@ -607,17 +606,17 @@ frame_timeout_ms = 5000
   ASSERT_EQ(vivid_capture_node(), node) << "vivid came back under another node";
   clock.advance(std::chrono::milliseconds(499));
   cam.service();
-  EXPECT_EQ(cam.state(), CameraState::Lost) << "reopened before its interval";
+  EXPECT_EQ(cam.state(), CameraState::lost) << "reopened before its interval";
   clock.advance(std::chrono::milliseconds(1));
   cam.service();
-  ASSERT_EQ(cam.state(), CameraState::Streaming) << cam.last_error();
+  ASSERT_EQ(cam.state(), CameraState::streaming) << cam.last_error();
   EXPECT_EQ(cam.last_error(), "");
   ASSERT_TRUE(cam.capture(frame, seconds(10))) << cam.last_error();
   EXPECT_EQ(frame.width, 640);
   EXPECT_EQ(frame.height, 480);
   const std::vector<std::string> mismatches = test::colour_bar_mismatches(frame, 8);
-  EXPECT_TRUE(mismatches.empty()) << mismatches.size() << " bars wrong after the rebind, first: "
-                                  << (mismatches.empty() ? "" : mismatches[0]);
+  EXPECT_TRUE(mismatches.empty()) << mismatches.size()
+                                  << " bars wrong after the rebind, first: " << (mismatches.empty() ? "" : mismatches[0]);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ TEST(PollWake, MockButtonsWakeAtTheDebounceAndLongPressDeadlines) {
   b.inject(0, true);
   for (int wakes = 0; got.size() < 2 && wakes < 5; ++wakes)
     ASSERT_TRUE(wake_and_read()) << "no wake after " << got.size() << " events";
-  EXPECT_EQ(got, (std::vector<ButtonAction>{ButtonAction::Press, ButtonAction::LongPress}));
+  EXPECT_EQ(got, (std::vector<ButtonAction>{ButtonAction::press, ButtonAction::long_press}));
   // Held, long press sent, no auto-repeat: nothing is due until the release.
   EXPECT_FALSE(readable(b.fd(), 0));
 
@@ -51,7 +51,7 @@ TEST(PollWake, MockButtonsWakeAtTheDebounceAndLongPressDeadlines) {
   for (int wakes = 0; got.size() < 3 && wakes < 5; ++wakes)
     ASSERT_TRUE(wake_and_read()) << "release debounce did not wake poll()";
   ASSERT_EQ(got.size(), 3u);
-  EXPECT_EQ(got[2], ButtonAction::Release);
+  EXPECT_EQ(got[2], ButtonAction::release);
   EXPECT_FALSE(readable(b.fd(), 0));
 }
 
@@ -60,11 +60,11 @@ TEST(PollWake, StatusTimerFdWakesAtEachLedEdgeAndSleepsOnSteadyPatterns) {
   auto sink = std::make_unique<RecordingLedSink>(clock, 1);
   auto changes = sink->changes;
   Status status({"status"}, std::move(sink), clock, "");
-  status.set_pattern(0, LedPattern::On);
+  status.set_pattern(0, LedPattern::on);
   EXPECT_FALSE(readable(status.fd(), 0)) << "a steady pattern needs no wake-ups";
 
   changes->clear();
-  status.set_pattern(0, LedPattern::BlinkSlow);  // on already; off 500 ms from now, on again at 1000 ms
+  status.set_pattern(0, LedPattern::blink_slow);  // on already; off 500 ms from now, on again at 1000 ms
   EXPECT_TRUE(changes->empty());
   ASSERT_TRUE(readable(status.fd(), kGenerousMs)) << "the blink's off edge did not wake poll()";
   status.update();
@@ -76,7 +76,7 @@ TEST(PollWake, StatusTimerFdWakesAtEachLedEdgeAndSleepsOnSteadyPatterns) {
   ASSERT_EQ(changes->size(), 2u);
   EXPECT_TRUE(changes->back().on);
 
-  status.set_pattern(0, LedPattern::Off);
+  status.set_pattern(0, LedPattern::off);
   EXPECT_FALSE(readable(status.fd(), 0));
 }
 
@@ -106,7 +106,7 @@ TEST(PollWake, MockCameraIsReadableWhenAFrameIsDueAndNotAfterItWasRead) {
   cam.replug();
   ASSERT_TRUE(readable(cam.fd(), kGenerousMs));
   cam.service();
-  EXPECT_EQ(cam.state(), CameraState::Streaming);
+  EXPECT_EQ(cam.state(), CameraState::streaming);
   ASSERT_TRUE(readable(cam.fd(), kGenerousMs));
   EXPECT_TRUE(cam.read_frame(f));
 }

@@ -14,8 +14,7 @@ namespace {
 
 constexpr int kW = 640, kH = 360;
 
-CameraModel model(double tilt, double blur, double noise, double exposure, double gamma, double vignetting,
-                  std::uint32_t seed) {
+CameraModel model(double tilt, double blur, double noise, double exposure, double gamma, double vignetting, std::uint32_t seed) {
   CameraModel m;
   m.screen_corners = {{{60 + tilt, 80}, {580, 70 + tilt}, {570 - tilt, 400}, {70, 410 - tilt}}};
   m.blur_sigma = blur;
@@ -39,8 +38,7 @@ RgbImage transform(const RgbImage& src, int dx, int dy, double scale) {
     for (int x = 0; x < src.width; ++x) {
       const int sx = static_cast<int>(std::lround((x - dx - src.width / 2.0) / scale + src.width / 2.0));
       const int sy = static_cast<int>(std::lround((y - dy - src.height / 2.0) / scale + src.height / 2.0));
-      if (sx >= 0 && sy >= 0 && sx < src.width && sy < src.height)
-        std::copy_n(src.at(sx, sy), 3, out.at(x, y));
+      if (sx >= 0 && sy >= 0 && sx < src.width && sy < src.height) std::copy_n(src.at(sx, sy), 3, out.at(x, y));
     }
   return out;
 }
@@ -73,20 +71,19 @@ TEST(SelfCheck, PassFailMatrixAndMargin) {
   // Wrong pictures.
   cases.push_back({"black screen", RgbImage(kW, kH), typical, false});
   cases.push_back({"black content, markers shown", with_markers(RgbImage(kW, kH), layout), typical, false});
-  cases.push_back({"frozen: previous check frame", with_markers(make_test_scene(kW, kH, 1, 1.5), previous_layout),
-                   typical, false});
-  cases.push_back({"frozen content (0.5 s old), current markers", with_markers(make_test_scene(kW, kH, 1, 1.5), layout),
-                   typical, false});
+  cases.push_back(
+      {"frozen: previous check frame", with_markers(make_test_scene(kW, kH, 1, 1.5), previous_layout), typical, false});
+  cases.push_back(
+      {"frozen content (0.5 s old), current markers", with_markers(make_test_scene(kW, kH, 1, 1.5), layout), typical, false});
   cases.push_back({"wrong scene", with_markers(make_test_scene(kW, kH, 2, 2.0), layout), typical, false});
   cases.push_back({"wrong scene 2", with_markers(make_test_scene(kW, kH, 4, 2.0), layout), typical, false});
   cases.push_back({"picture shifted 24 px on the panel", transform(presented, 24, 0, 1.0), typical, false});
   cases.push_back({"picture cropped by overscan 5%", transform(presented, 0, 0, 1.05), typical, false});
-  cases.push_back({"content shifted 24 px, markers in place", with_markers(transform(scene, 24, 0, 1.0), layout),
-                   typical, false});
-  cases.push_back({"content shifted 12 px down, markers in place", with_markers(transform(scene, 0, 12, 1.0), layout),
-                   typical, false});
-  cases.push_back({"content cropped 10%, markers in place", with_markers(transform(scene, 0, 0, 1.10), layout),
-                   typical, false});
+  cases.push_back(
+      {"content shifted 24 px, markers in place", with_markers(transform(scene, 24, 0, 1.0), layout), typical, false});
+  cases.push_back(
+      {"content shifted 12 px down, markers in place", with_markers(transform(scene, 0, 12, 1.0), layout), typical, false});
+  cases.push_back({"content cropped 10%, markers in place", with_markers(transform(scene, 0, 0, 1.10), layout), typical, false});
 
   // Other scenes, each checked against itself.
   std::vector<std::pair<RgbImage, RgbImage>> own;  // (presented, displayed)
@@ -156,14 +153,14 @@ TEST(MockCamera, CyclesImageFilesAtItsFrameRateAndSimulatesUnplug) {
   EXPECT_TRUE(cam.read_frame(f));
   EXPECT_FALSE(cam.read_frame(f));
   cam.unplug();
-  EXPECT_EQ(cam.state(), CameraState::Lost);
+  EXPECT_EQ(cam.state(), CameraState::lost);
   EXPECT_NE(cam.last_error().find("No such device"), std::string::npos);
   EXPECT_FALSE(cam.read_frame(f));
   cam.service();
-  EXPECT_EQ(cam.state(), CameraState::Lost);  // still unplugged
+  EXPECT_EQ(cam.state(), CameraState::lost);  // still unplugged
   cam.replug();
   cam.service();
-  EXPECT_EQ(cam.state(), CameraState::Streaming);
+  EXPECT_EQ(cam.state(), CameraState::streaming);
   EXPECT_TRUE(cam.last_error().empty());
   EXPECT_TRUE(cam.read_frame(f));
   EXPECT_THROW(MockCamera({dir + "/does-not-exist.png"}, clock), std::runtime_error);

@@ -20,34 +20,34 @@ namespace {
 using std::chrono::milliseconds;
 
 TEST(LedPatterns, BlinkAndHeartbeatToggleAtTheirPhases) {
-  EXPECT_TRUE(pattern_level(LedPattern::BlinkSlow, milliseconds(0)));
-  EXPECT_TRUE(pattern_level(LedPattern::BlinkSlow, milliseconds(499)));
-  EXPECT_FALSE(pattern_level(LedPattern::BlinkSlow, milliseconds(500)));
-  EXPECT_TRUE(pattern_level(LedPattern::BlinkSlow, milliseconds(1000)));
-  EXPECT_EQ(pattern_next_change(LedPattern::BlinkSlow, milliseconds(700)), milliseconds(1000));
-  EXPECT_EQ(pattern_next_change(LedPattern::BlinkFast, milliseconds(0)), milliseconds(100));
-  EXPECT_EQ(pattern_next_change(LedPattern::On, milliseconds(5)), Nanos::max());
-  EXPECT_FALSE(pattern_level(LedPattern::Off, milliseconds(5)));
+  EXPECT_TRUE(pattern_level(LedPattern::blink_slow, milliseconds(0)));
+  EXPECT_TRUE(pattern_level(LedPattern::blink_slow, milliseconds(499)));
+  EXPECT_FALSE(pattern_level(LedPattern::blink_slow, milliseconds(500)));
+  EXPECT_TRUE(pattern_level(LedPattern::blink_slow, milliseconds(1000)));
+  EXPECT_EQ(pattern_next_change(LedPattern::blink_slow, milliseconds(700)), milliseconds(1000));
+  EXPECT_EQ(pattern_next_change(LedPattern::blink_fast, milliseconds(0)), milliseconds(100));
+  EXPECT_EQ(pattern_next_change(LedPattern::on, milliseconds(5)), Nanos::max());
+  EXPECT_FALSE(pattern_level(LedPattern::off, milliseconds(5)));
   // Heartbeat: on 0-100, off 100-250, on 250-350, off until 1200.
-  const std::pair<int, bool> beat[] = {{0, true}, {99, true}, {100, false}, {249, false}, {250, true},
+  const std::pair<int, bool> beat[] = {{0, true},   {99, true},   {100, false},  {249, false}, {250, true},
                                        {349, true}, {350, false}, {1199, false}, {1200, true}};
-  for (auto [ms, on] : beat) EXPECT_EQ(pattern_level(LedPattern::Heartbeat, milliseconds(ms)), on) << ms;
+  for (auto [ms, on] : beat) EXPECT_EQ(pattern_level(LedPattern::heartbeat, milliseconds(ms)), on) << ms;
 }
 
 TEST(LedPatterns, PeriodIsOneFullCycle) {
-  EXPECT_EQ(pattern_period(LedPattern::BlinkSlow), milliseconds(1000));
-  EXPECT_EQ(pattern_period(LedPattern::BlinkFast), milliseconds(200));
-  EXPECT_EQ(pattern_period(LedPattern::Heartbeat), milliseconds(1200));
-  EXPECT_EQ(pattern_period(LedPattern::On), Nanos::max());
+  EXPECT_EQ(pattern_period(LedPattern::blink_slow), milliseconds(1000));
+  EXPECT_EQ(pattern_period(LedPattern::blink_fast), milliseconds(200));
+  EXPECT_EQ(pattern_period(LedPattern::heartbeat), milliseconds(1200));
+  EXPECT_EQ(pattern_period(LedPattern::on), Nanos::max());
   // A period later every pattern is back where it started.
-  for (auto p : {LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat})
+  for (auto p : {LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat})
     for (int ms : {0, 90, 150, 300, 600})
       EXPECT_EQ(pattern_level(p, milliseconds(ms)), pattern_level(p, milliseconds(ms) + pattern_period(p))) << ms;
 }
 
 TEST(LedPatterns, NamesRoundTrip) {
-  for (auto p : {LedPattern::Off, LedPattern::On, LedPattern::BlinkSlow, LedPattern::BlinkFast, LedPattern::Heartbeat}) {
-    LedPattern q = LedPattern::Off;
+  for (auto p : {LedPattern::off, LedPattern::on, LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat}) {
+    LedPattern q = LedPattern::off;
     ASSERT_TRUE(parse_led_pattern(to_string(p), q));
     EXPECT_EQ(p, q);
   }
@@ -64,8 +64,8 @@ TEST(Status, DrivesTheSinkAtPatternEdges) {
   ASSERT_EQ(status.find_led("error"), 1u);
   EXPECT_FALSE(status.find_led("nope").has_value());
   changes->clear();
-  status.set_pattern(0, LedPattern::BlinkFast);
-  status.set_pattern(1, LedPattern::On);
+  status.set_pattern(0, LedPattern::blink_fast);
+  status.set_pattern(1, LedPattern::on);
   for (int i = 0; i < 450; ++i) {
     clock.advance(milliseconds(1));
     status.update();
@@ -75,7 +75,7 @@ TEST(Status, DrivesTheSinkAtPatternEdges) {
     if (c.led == 0) led0.push_back({std::chrono::duration_cast<milliseconds>(c.time).count() - 5000, c.on});
   EXPECT_EQ(led0, (std::vector<std::pair<long long, bool>>{{0, true}, {100, false}, {200, true}, {300, false}, {400, true}}));
   ASSERT_EQ(std::count_if(changes->begin(), changes->end(), [](auto& c) { return c.led == 1; }), 1);
-  status.set_pattern(0, LedPattern::Off);
+  status.set_pattern(0, LedPattern::off);
   EXPECT_FALSE(changes->back().on);
 }
 
@@ -86,7 +86,7 @@ TEST(Status, ReportIsWrittenAtomicallyAsJson) {
   const std::string file = dir + "/status.json";
   ManualClock clock(milliseconds(1234));
   Status status({"status"}, std::make_unique<RecordingLedSink>(clock, 1), clock, file);
-  status.set_pattern(0, LedPattern::Heartbeat);
+  status.set_pattern(0, LedPattern::heartbeat);
   StatusReport r;
   r.state = "playing";
   r.item = "scenes/sponza.gltf";
@@ -123,8 +123,9 @@ TEST(Status, ReportIsWrittenAtomicallyAsJson) {
 // fsync costs nothing and a write takes long enough against a read that a file rewritten in place
 // is caught torn on every run.
 TEST(Status, ConcurrentReaderNeverSeesAPartialFile) {
-  const std::string dir = (std::filesystem::is_directory("/dev/shm") ? std::string("/dev/shm") : std::string(HAL_TEST_OUTPUT_DIR)) +
-                          "/hal_status_atomic_" + std::to_string(::getpid());
+  const std::string dir =
+      (std::filesystem::is_directory("/dev/shm") ? std::string("/dev/shm") : std::string(HAL_TEST_OUTPUT_DIR)) +
+      "/hal_status_atomic_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string file = dir + "/status.json";

@@ -11,8 +11,8 @@
 // one pixel value covers more than the fraction F of the image (the background alone must not fill
 // it). --same-as: the colour channels (RGB) of each pixel differ from REF's by at most N (8-bit steps,
 // --max-diff, default 0), and the count and worst difference are printed; with --turned DEG (90, 180,
-// 270) each file is compared with REF turned that far clockwise, as the player's --rotation turns it. Each failure is one line "FILE: <what>: expected <value>, got <value>". Exit 0 when every
-// file passes, 1 when one fails, 2 on bad arguments.
+// 270) each file is compared with REF turned that far clockwise, as the player's --rotation turns it. Each failure is one line
+// "FILE: <what>: expected <value>, got <value>". Exit 0 when every file passes, 1 when one fails, 2 on bad arguments.
 #include <OpenImageIO/imagebuf.h>
 
 #include <algorithm>
@@ -30,13 +30,14 @@ struct Checks {
   int width = 0, height = 0, channels = 0;  // channels 0: any
   std::size_t min_colours = 2;              // 2: not uniform
   double max_share = 1.0;
-  std::string same_as;  // empty: no comparison
+  std::string same_as;    // empty: no comparison
   double max_diff = 0.0;  // in 8-bit steps
   int turned = 0;         // degrees clockwise
 };
 
 int usage(const std::string& why) {
-  std::fprintf(stderr, "image_check: %s\nusage: image_check --size WxH [--channels N] [--min-colours N] [--max-share F] FILE...\n",
+  std::fprintf(stderr,
+               "image_check: %s\nusage: image_check --size WxH [--channels N] [--min-colours N] [--max-share F] FILE...\n",
                why.c_str());
   return 2;
 }
@@ -51,7 +52,8 @@ std::vector<std::string> check(const std::string& path, const Checks& want) {
     failures.push_back(path + ": size: expected " + std::to_string(want.width) + "x" + std::to_string(want.height) + ", got " +
                        std::to_string(spec.width) + "x" + std::to_string(spec.height));
   if (want.channels != 0 && spec.nchannels != want.channels)
-    failures.push_back(path + ": channels: expected " + std::to_string(want.channels) + ", got " + std::to_string(spec.nchannels));
+    failures.push_back(path + ": channels: expected " + std::to_string(want.channels) + ", got " +
+                       std::to_string(spec.nchannels));
   // Distinct pixel values, counted exactly (8-bit files hold few; float files are compared as stored).
   std::map<std::vector<float>, std::size_t> counts;
   std::vector<float> pixel(static_cast<std::size_t>(spec.nchannels));
@@ -82,9 +84,10 @@ std::vector<std::string> check(const std::string& path, const Checks& want) {
     const bool quarter = want.turned == 90 || want.turned == 270;
     const int ref_width = quarter ? ref.height : ref.width, ref_height = quarter ? ref.width : ref.height;
     if (ref_width != spec.width || ref_height != spec.height || ref.nchannels < 3 || spec.nchannels < 3) {
-      failures.push_back(path + ": --same-as " + want.same_as + ": expected the same size with RGB, got " + std::to_string(ref.width) +
-                         "x" + std::to_string(ref.height) + "x" + std::to_string(ref.nchannels) + " against " +
-                         std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" + std::to_string(spec.nchannels));
+      failures.push_back(path + ": --same-as " + want.same_as + ": expected the same size with RGB, got " +
+                         std::to_string(ref.width) + "x" + std::to_string(ref.height) + "x" + std::to_string(ref.nchannels) +
+                         " against " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+                         std::to_string(spec.nchannels));
       return failures;
     }
     std::vector<float> other(static_cast<std::size_t>(ref.nchannels));
@@ -95,9 +98,12 @@ std::vector<std::string> check(const std::string& path, const Checks& want) {
         image.getpixel(x, y, pixel.data(), spec.nchannels);
         // The reference pixel this one shows when the reference is turned clockwise (rows from the top).
         int rx = x, ry = y;
-        if (want.turned == 90) rx = y, ry = ref.height - 1 - x;
-        else if (want.turned == 180) rx = ref.width - 1 - x, ry = ref.height - 1 - y;
-        else if (want.turned == 270) rx = ref.width - 1 - y, ry = x;
+        if (want.turned == 90)
+          rx = y, ry = ref.height - 1 - x;
+        else if (want.turned == 180)
+          rx = ref.width - 1 - x, ry = ref.height - 1 - y;
+        else if (want.turned == 270)
+          rx = ref.width - 1 - y, ry = x;
         reference.getpixel(rx, ry, other.data(), ref.nchannels);
         double here = 0.0;
         for (int c = 0; c < 3; ++c) here = std::max(here, std::abs(static_cast<double>(pixel[c]) - other[c]) * 255.0);

@@ -251,8 +251,10 @@ class Environment {
   }
   ~Environment() {
     for (auto it = saved_.rbegin(); it != saved_.rend(); ++it)
-      if (it->had) setenv(it->name, it->value.c_str(), 1);
-      else unsetenv(it->name);
+      if (it->had)
+        setenv(it->name, it->value.c_str(), 1);
+      else
+        unsetenv(it->name);
   }
 
  private:
@@ -352,7 +354,8 @@ std::string joined(const std::vector<std::string>& lines) {
 TEST(ServicePlay, ReadyAfterTheFirstFrameThenWatchdogStatusAndStopping) {
   // 30 frames paced at 30 fps take at least 29/30 s of real time: with pings due every 100 ms
   // that is several, whatever the machine's speed (a slower machine only sends more).
-  const PlayRun run = run_player({"--platform", "egl", "--size", "64x48", "--frames", "30", "--fps", "30"}, true, "service-play.log");
+  const PlayRun run =
+      run_player({"--platform", "egl", "--size", "64x48", "--frames", "30", "--fps", "30"}, true, "service-play.log");
   ASSERT_TRUE(WIFEXITED(run.status) && WEXITSTATUS(run.status) == 0) << run.output;
   const std::vector<std::string>& lines = run.lines;
   SCOPED_TRACE("messages:\n" + joined(lines) + "player output:\n" + run.output);
@@ -391,7 +394,8 @@ TEST(ServicePlay, ReadyAfterTheFirstFrameThenWatchdogStatusAndStopping) {
 }
 
 TEST(ServicePlay, AWatchdogMeantForAnotherProcessIsNotFed) {
-  const PlayRun run = run_player({"--platform", "egl", "--size", "64x48", "--frames", "10", "--fps", "30"}, false, "service-pid.log");
+  const PlayRun run =
+      run_player({"--platform", "egl", "--size", "64x48", "--frames", "10", "--fps", "30"}, false, "service-pid.log");
   ASSERT_TRUE(WIFEXITED(run.status) && WEXITSTATUS(run.status) == 0) << run.output;
   SCOPED_TRACE("messages:\n" + joined(run.lines));
   ASSERT_FALSE(run.lines.empty());

@@ -76,7 +76,8 @@ TEST(AobenchConfigs, SpecificationsRoundTripThroughDescribe) {
 
 TEST(AobenchConfigs, SavingsCanBeSwitchedOffOneByOne) {
   std::string error;
-  const std::string core = "estimator=hemisphere,samples=16,radii=2,pattern=jittered,blur=off,resolution=full,depth-chain=off,skip-radii=on";
+  const std::string core =
+      "estimator=hemisphere,samples=16,radii=2,pattern=jittered,blur=off,resolution=full,depth-chain=off,skip-radii=on";
   const auto config = aobench::parse_config(core + ",skip-background=off,untextured-variant=off,reuse-ao=on,prepass=off", error);
   ASSERT_TRUE(config.has_value()) << error;
   EXPECT_FALSE(config->settings.ao_settings.skip_background);
@@ -93,7 +94,8 @@ TEST(AobenchConfigs, SavingsCanBeSwitchedOffOneByOne) {
   EXPECT_TRUE(again->settings.reuse_static_ao);
   EXPECT_EQ(again->settings.prepass, render::Prepass::off);
   // Given in another order, the name still comes out in the one order.
-  const auto shuffled = aobench::parse_config("prepass=off,reuse-ao=on,untextured-variant=off,skip-background=off," + core, error);
+  const auto shuffled =
+      aobench::parse_config("prepass=off,reuse-ao=on,untextured-variant=off,skip-background=off," + core, error);
   ASSERT_TRUE(shuffled.has_value()) << error;
   EXPECT_EQ(aobench::describe(shuffled->settings), expected);
   // Settings left at the player's default stay out of the name.
@@ -146,8 +148,9 @@ TEST(AobenchConfigs, AblationTurnsOffOneSavingAtATime) {
   // The baseline: the player's defaults with every frame computing its AO (aobench times every frame).
   render::FrameSettings baseline;
   baseline.reuse_static_ao = false;
-  const char* fields[] = {"skip-background", "untextured-variant", "reuse-ao", "prepass", "depth-chain", "resolution",
-                          "skip-radii", "radii", "samples", "estimator", "pattern", "blur", "ao"};
+  const char* fields[] = {
+      "skip-background", "untextured-variant", "reuse-ao", "prepass", "depth-chain", "resolution", "skip-radii", "radii",
+      "samples",         "estimator",          "pattern",  "blur",    "ao"};
   for (size_t i = 0; i < configs.size(); ++i) {
     const auto& [name, changes] = expected[i];
     EXPECT_EQ(configs[i].name, name) << "entry " << i;
@@ -269,8 +272,8 @@ TEST(AobenchConfigs, SweepsCoverTheGrid) {
 }
 
 TEST(AobenchChart, ParetoFrontKeepsOnlyUnbeatenPoints) {
-  std::vector<aobench::ChartPoint> points = {
-      {10, 0.5, false, ""}, {20, 0.2, false, ""}, {15, 0.6, false, ""}, {30, 0.2, false, ""}, {40, 0.1, false, ""}, {10, 0.5, false, ""}};
+  std::vector<aobench::ChartPoint> points = {{10, 0.5, false, ""}, {20, 0.2, false, ""}, {15, 0.6, false, ""},
+                                             {30, 0.2, false, ""}, {40, 0.1, false, ""}, {10, 0.5, false, ""}};
   // (15, 0.6) is beaten by (10, 0.5); (30, 0.2) by (20, 0.2); the second (10, 0.5) ties the first.
   EXPECT_EQ(aobench::pareto_front(points), (std::vector<size_t>{0, 1, 4}));
 }
@@ -337,12 +340,14 @@ TEST(AobenchChart, PointsFrontAndMarksAreDrawnWhereTheDataSays) {
   // Front points: a filled 9x9 square each.
   for (int i : {0, 1, 4}) {
     const int x = axes.x(points[i].time_ms), y = axes.y(points[i].error);
-    EXPECT_EQ(chart.count(aobench::kFrontColour, x - 4, y - 4, x + 4, y + 4), 81) << "front point " << i << " at (" << x << ", " << y << ")";
+    EXPECT_EQ(chart.count(aobench::kFrontColour, x - 4, y - 4, x + 4, y + 4), 81)
+        << "front point " << i << " at (" << x << ", " << y << ")";
   }
   // Beaten points: a 5x5 dot, and nothing of the front's colour around it.
   for (int i : {2, 3}) {
     const int x = axes.x(points[i].time_ms), y = axes.y(points[i].error);
-    EXPECT_EQ(chart.count(aobench::kPointColour, x - 2, y - 2, x + 2, y + 2), 25) << "point " << i << " at (" << x << ", " << y << ")";
+    EXPECT_EQ(chart.count(aobench::kPointColour, x - 2, y - 2, x + 2, y + 2), 25)
+        << "point " << i << " at (" << x << ", " << y << ")";
     EXPECT_EQ(chart.count(aobench::kFrontColour, x - 6, y - 6, x + 6, y + 6), 0) << "point " << i << " drawn as on the front";
   }
   // The front line: halfway between consecutive front points.

@@ -18,7 +18,9 @@
 
 namespace {
 
-bool is_open(int fd) { return fcntl(fd, F_GETFD) != -1; }
+bool is_open(int fd) {
+  return fcntl(fd, F_GETFD) != -1;
+}
 
 TEST(BaseUniqueFd, ClosesWhenTheOwnerGoes) {
   int raw = -1;
@@ -104,7 +106,8 @@ TEST(BaseParse, SizesAreTwoPositiveIntegersJoinedByX) {
   EXPECT_TRUE(base::parse_size("1920x1080", 8192, w, h));
   EXPECT_EQ(w, 1920);
   EXPECT_EQ(h, 1080);
-  for (const char* text : {"", "1920", "1920x", "x1080", "0x10", "10x0", "-1x5", "1920x1080x3", "1920 x1080", "8193x10", "10X10"}) {
+  for (const char* text :
+       {"", "1920", "1920x", "x1080", "0x10", "10x0", "-1x5", "1920x1080x3", "1920 x1080", "8193x10", "10X10"}) {
     int a = 3, b = 4;
     EXPECT_FALSE(base::parse_size(text, 8192, a, b)) << "'" << text << "'";
     EXPECT_EQ(a, 3);

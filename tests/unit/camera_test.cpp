@@ -71,8 +71,8 @@ TEST(Camera, TheBoundingSphereFillsTheNarrowerSideOfTheView) {
         const scene::Camera camera = scene::frame(bounds, framing, width, height);
         const SphereInView seen = sphere_in_view(bounds, camera);
         const double narrow = width >= height ? seen.max_y : seen.max_x, wide = width >= height ? seen.max_x : seen.max_y;
-        const std::string where = std::to_string(width) + "x" + std::to_string(height) + " " + std::to_string(azimuth) +
-                                  "/" + std::to_string(elevation);
+        const std::string where = std::to_string(width) + "x" + std::to_string(height) + " " + std::to_string(azimuth) + "/" +
+                                  std::to_string(elevation);
         EXPECT_LE(narrow, 1.0 + 1e-9) << where;
         EXPECT_GE(narrow, 1.0 - 1e-3) << where;
         EXPECT_LE(wide, 1.0 + 1e-9) << where;

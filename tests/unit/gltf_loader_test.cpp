@@ -53,7 +53,7 @@ class GltfLoader : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("gltf_loader_test_" + std::to_string(::getpid()) + "_" +
-                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_ / "scene");
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -65,19 +65,18 @@ class GltfLoader : public ::testing::Test {
     const size_t index_offset = bytes.size();
     for (uint16_t i : indices) append<uint16_t>(bytes, {i});
     while (bytes.size() % 4) bytes.push_back(0);
-    return json{
-        {"asset", {{"version", "2.0"}}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
-        {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
-        {"bufferViews",
-         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", index_offset}},
-          {{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", indices.size() * 2}}}},
-        {"accessors",
-         {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"}},
-          {{"bufferView", 1}, {"componentType", 5123}, {"count", indices.size()}, {"type", "SCALAR"}}}}};
+    return json{{"asset", {{"version", "2.0"}}},
+                {"scene", 0},
+                {"scenes", {{{"nodes", {0}}}}},
+                {"nodes", {{{"mesh", 0}}}},
+                {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+                {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+                {"bufferViews",
+                 {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", index_offset}},
+                  {{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", indices.size() * 2}}}},
+                {"accessors",
+                 {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"}},
+                  {{"bufferView", 1}, {"componentType", 5123}, {"count", indices.size()}, {"type", "SCALAR"}}}}};
   }
 
   fs::path write(const json& doc, const std::string& name = "scene/model.gltf") {
@@ -108,8 +107,10 @@ class GltfLoader : public ::testing::Test {
 };
 
 TEST_F(GltfLoader, SharedScenesLoadWithTheirTriangleCounts) {
-  const std::pair<const char*, size_t> scenes[] = {{"stanford-bunny.glb", 69451}, {"armadillo.glb", 50000},
-                                                   {"spot.glb", 5856},           {"fandisk.glb", 12946},
+  const std::pair<const char*, size_t> scenes[] = {{"stanford-bunny.glb", 69451},
+                                                   {"armadillo.glb", 50000},
+                                                   {"spot.glb", 5856},
+                                                   {"fandisk.glb", 12946},
                                                    {"teapot-no-normals.glb", 6320}};
   for (const auto& [file, triangles] : scenes) {
     ASSERT_TRUE(fs::exists(kShared / "scenes" / file)) << "the shared scenes must be beside the repository: " << kShared;
@@ -168,8 +169,10 @@ std::vector<float> vertex_row(int m) {
 std::vector<uint32_t> spec_triangles(int mode, const std::vector<uint32_t>& v) {
   std::vector<uint32_t> out;
   for (size_t i = 0; i + 2 < v.size(); ++i) {
-    if (mode == 5) out.insert(out.end(), {v[i], v[i + (1 + i % 2)], v[i + (2 - i % 2)]});
-    else out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    if (mode == 5)
+      out.insert(out.end(), {v[i], v[i + (1 + i % 2)], v[i + (2 - i % 2)]});
+    else
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
   }
   return out;
 }
@@ -299,8 +302,8 @@ TEST_F(GltfLoader, TruncatedBinaryFileIsAClearError) {
   const fs::path path = dir_ / "scene" / "truncated.glb";
   std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   const std::string error = error_of(path);
-  EXPECT_NE(error.find(": not a valid glTF 2.0 file: GLB header length " + std::to_string(bytes.size()) + " differs from the file's " +
-                       std::to_string(bytes.size() / 2) + " bytes"),
+  EXPECT_NE(error.find(": not a valid glTF 2.0 file: GLB header length " + std::to_string(bytes.size()) +
+                       " differs from the file's " + std::to_string(bytes.size() / 2) + " bytes"),
             std::string::npos)
       << error;
 }
@@ -335,7 +338,8 @@ TEST_F(GltfLoader, AccessorBoundsAreCheckedAtTheirLastByte) {
   json doc = triangle();
   doc["accessors"][0]["count"] = 4;
   std::string error = error_of(write(doc));
-  EXPECT_NE(error.find("attributes.POSITION (accessors[0]): needs 48 bytes but its buffer view has 36"), std::string::npos) << error;
+  EXPECT_NE(error.find("attributes.POSITION (accessors[0]): needs 48 bytes but its buffer view has 36"), std::string::npos)
+      << error;
   doc = triangle();
   doc["accessors"][0]["byteOffset"] = 4;
   error = error_of(write(doc));
@@ -347,7 +351,9 @@ TEST_F(GltfLoader, AccessorBoundsAreCheckedAtTheirLastByte) {
   doc = triangle();
   doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 2;
   error = error_of(write(doc));
-  EXPECT_NE(error.find("attributes.POSITION: 2 is out of range; expected an index into accessors (there are 2)"), std::string::npos) << error;
+  EXPECT_NE(error.find("attributes.POSITION: 2 is out of range; expected an index into accessors (there are 2)"),
+            std::string::npos)
+      << error;
 }
 
 TEST_F(GltfLoader, AccessorsBeyondTheirBufferViewAreRejected) {
@@ -431,7 +437,7 @@ TEST_F(GltfLoader, OverflowingTransformsAndWrongFileTypesAreRejected) {
 // --- The corpus (tests/gltf_corpus): one test per file, each with its exact verdict --------------
 
 struct Verdict {
-  std::string error;                  // empty: the file loads
+  std::string error;                       // empty: the file loads
   std::vector<std::string> warnings = {};  // when it loads
 };
 
@@ -490,8 +496,10 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"version-1.0.gltf", {"asset.version: \"1.0\" is not glTF 2; expected \"2.0\" (or another 2.x)"}},
     {"min-version-2.1.gltf", {"asset.minVersion: \"2.1\" asks for more than this player reads; expected \"2.0\""}},
     {"version-missing.gltf", {"asset.version: missing; expected \"2.0\""}},
-    {"json-nested-200000.gltf", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
-    {"json-nested-200000.glb", {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"json-nested-200000.gltf",
+     {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
+    {"json-nested-200000.glb",
+     {"not a valid glTF 2.0 file: JSON nests deeper than 512 levels at byte 1107; expected at most 512"}},
     {"utf8-bom.gltf", {"", {"the JSON starts with a UTF-8 byte-order mark, which glTF forbids; ignored"}}},
     {"stride-below-element.gltf",
      {"meshes[0].primitives[0].attributes.POSITION (accessors[0]): bufferViews[0].byteStride 8 is smaller than an "
@@ -542,8 +550,7 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"scene-node-out-of-range.gltf", {"scenes[0].nodes[0]: 3 is out of range; expected an index into nodes (there are 1)"}},
     {"node-mesh-out-of-range.gltf", {"nodes[0].mesh: 2 is out of range; expected an index into meshes (there are 1)"}},
     {"sampler-out-of-range.gltf", {"textures[0].sampler: 4 is out of range; expected an index into samplers (there are 1)"}},
-    {"texture-source-out-of-range.gltf",
-     {"textures[0].source: 3 is out of range; expected an index into images (there are 1)"}},
+    {"texture-source-out-of-range.gltf", {"textures[0].source: 3 is out of range; expected an index into images (there are 1)"}},
     {"material-texture-out-of-range.gltf",
      {"materials[0].pbrMetallicRoughness.baseColorTexture.index: 2 is out of range; expected an index into textures "
       "(there are 1)"}},
@@ -572,12 +579,15 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"glb-bad-magic.glb", {"not a valid glTF 2.0 file: bytes 0..3 are not the GLB magic 'glTF'"}},
     {"glb-version-1.glb", {"not a valid glTF 2.0 file: GLB header version 1; expected 2"}},
     {"glb-length-mismatch.glb", {"not a valid glTF 2.0 file: GLB header length 4096 differs from the file's 556 bytes"}},
-    {"glb-json-chunk-past-end.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: length 556 runs past the end of the file (536 bytes left)"}},
+    {"glb-json-chunk-past-end.glb",
+     {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: length 556 runs past the end of the file (536 bytes left)"}},
     {"glb-bin-chunk-past-end.glb",
      {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 65536 runs past the end of the file (44 bytes left)"}},
-    {"glb-first-chunk-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: type 0x004E4942; expected JSON (0x4E4F534A) first"}},
+    {"glb-first-chunk-bin.glb",
+     {"not a valid glTF 2.0 file: GLB chunk 0 at byte 12: type 0x004E4942; expected JSON (0x4E4F534A) first"}},
     {"glb-two-json-chunks.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: a second JSON chunk; expected one"}},
-    {"glb-truncated-bin.glb", {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 44 runs past the end of the file (36 bytes left)"}},
+    {"glb-truncated-bin.glb",
+     {"not a valid glTF 2.0 file: GLB chunk 1 at byte 504: length 44 runs past the end of the file (36 bytes left)"}},
 };
 
 class GltfCorpus : public ::testing::TestWithParam<corpus::Case> {
@@ -770,8 +780,9 @@ TEST_F(GltfCorpusContent, ImagesAboveTheCallersLimitsAreDrawnWhite) {
   scene::LoadOptions tight;
   tight.image_budget_bytes = 63;  // 4 x 4 x 4 bytes is 64
   ASSERT_TRUE(scene::load_gltf(dir_ / "t.gltf", out, report, tight)) << report.error;
-  EXPECT_EQ(report.warnings,
-            (std::vector<std::string>{"images[0]: PNG of 4x4 needs 0 MiB decoded; expected at most 0 MiB per image" + kDrawnWhite}));
+  EXPECT_EQ(
+      report.warnings,
+      (std::vector<std::string>{"images[0]: PNG of 4x4 needs 0 MiB decoded; expected at most 0 MiB per image" + kDrawnWhite}));
 }
 
 }  // namespace

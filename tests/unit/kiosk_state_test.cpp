@@ -21,12 +21,23 @@ constexpr std::array<State, 6> kStates = {State::starting, State::loading, State
 KioskState in(State state) {
   KioskState kiosk;
   switch (state) {
-    case State::starting: break;
-    case State::loading: kiosk.frame_drawn(Shown::loading, false); break;
-    case State::playing: kiosk.frame_drawn(Shown::scene, false); break;
-    case State::paused: kiosk.frame_drawn(Shown::scene, true); break;
-    case State::error: kiosk.frame_drawn(Shown::nothing_playable, false); break;
-    case State::no_display: kiosk.display_lost(); break;
+    case State::starting:
+      break;
+    case State::loading:
+      kiosk.frame_drawn(Shown::loading, false);
+      break;
+    case State::playing:
+      kiosk.frame_drawn(Shown::scene, false);
+      break;
+    case State::paused:
+      kiosk.frame_drawn(Shown::scene, true);
+      break;
+    case State::error:
+      kiosk.frame_drawn(Shown::nothing_playable, false);
+      break;
+    case State::no_display:
+      kiosk.display_lost();
+      break;
   }
   EXPECT_EQ(kiosk.state(), state);
   return kiosk;
@@ -59,34 +70,38 @@ void expect_transitions(const char* event, auto&& apply, auto&& expected) {
 }
 
 TEST(KioskState, ADisplayThatGoesAwayShowsNoDisplayFromEveryState) {
-  expect_transitions("display lost", [](KioskState& k) { return k.display_lost(); }, [](State) { return State::no_display; });
+  expect_transitions(
+      "display lost", [](KioskState& k) { return k.display_lost(); }, [](State) { return State::no_display; });
 }
 
 TEST(KioskState, AFrameOfTheScenePlaysFromEveryState) {
-  expect_transitions("scene drawn", [](KioskState& k) { return k.frame_drawn(Shown::scene, false); },
-                     [](State) { return State::playing; });
+  expect_transitions(
+      "scene drawn", [](KioskState& k) { return k.frame_drawn(Shown::scene, false); }, [](State) { return State::playing; });
 }
 
 TEST(KioskState, AFrameOfTheSceneWithTheClockPausedIsPausedFromEveryState) {
-  expect_transitions("scene drawn paused", [](KioskState& k) { return k.frame_drawn(Shown::scene, true); },
-                     [](State) { return State::paused; });
+  expect_transitions(
+      "scene drawn paused", [](KioskState& k) { return k.frame_drawn(Shown::scene, true); }, [](State) { return State::paused; });
 }
 
 TEST(KioskState, AFrameWaitingForItsSceneIsLoadingFromEveryStatePausedOrNot) {
   for (bool paused : {false, true})
-    expect_transitions("loading drawn", [&](KioskState& k) { return k.frame_drawn(Shown::loading, paused); },
-                       [](State) { return State::loading; });
+    expect_transitions(
+        "loading drawn", [&](KioskState& k) { return k.frame_drawn(Shown::loading, paused); },
+        [](State) { return State::loading; });
 }
 
 TEST(KioskState, AFrameWithNothingPlayableIsAnErrorFromEveryStatePausedOrNot) {
   for (bool paused : {false, true})
-    expect_transitions("nothing playable drawn", [&](KioskState& k) { return k.frame_drawn(Shown::nothing_playable, paused); },
-                       [](State) { return State::error; });
+    expect_transitions(
+        "nothing playable drawn", [&](KioskState& k) { return k.frame_drawn(Shown::nothing_playable, paused); },
+        [](State) { return State::error; });
 }
 
 TEST(KioskState, StoppingReportsPlayingUnlessInErrorOrWithoutADisplay) {
-  expect_transitions("stopped", [](KioskState& k) { return k.stopped(); },
-                     [](State from) { return from == State::error || from == State::no_display ? from : State::playing; });
+  expect_transitions(
+      "stopped", [](KioskState& k) { return k.stopped(); },
+      [](State from) { return from == State::error || from == State::no_display ? from : State::playing; });
 }
 
 TEST(KioskState, PauseAndResumeAsTheButtonDoesThem) {
@@ -130,30 +145,30 @@ struct Plan {
 // board/README.md's table: the status LED tells the state, the error LED problems (a failed
 // self-check fast, a warning slowly); in the error state the error LED is on and says nothing else.
 constexpr Plan kPlans[] = {
-    {State::starting, false, false, LedPattern::BlinkFast, LedPattern::Off},
-    {State::starting, true, false, LedPattern::BlinkFast, LedPattern::BlinkSlow},
-    {State::starting, false, true, LedPattern::BlinkFast, LedPattern::BlinkFast},
-    {State::starting, true, true, LedPattern::BlinkFast, LedPattern::BlinkFast},
-    {State::loading, false, false, LedPattern::BlinkSlow, LedPattern::Off},
-    {State::loading, true, false, LedPattern::BlinkSlow, LedPattern::BlinkSlow},
-    {State::loading, false, true, LedPattern::BlinkSlow, LedPattern::BlinkFast},
-    {State::loading, true, true, LedPattern::BlinkSlow, LedPattern::BlinkFast},
-    {State::playing, false, false, LedPattern::Heartbeat, LedPattern::Off},
-    {State::playing, true, false, LedPattern::Heartbeat, LedPattern::BlinkSlow},
-    {State::playing, false, true, LedPattern::Heartbeat, LedPattern::BlinkFast},
-    {State::playing, true, true, LedPattern::Heartbeat, LedPattern::BlinkFast},
-    {State::paused, false, false, LedPattern::On, LedPattern::Off},
-    {State::paused, true, false, LedPattern::On, LedPattern::BlinkSlow},
-    {State::paused, false, true, LedPattern::On, LedPattern::BlinkFast},
-    {State::paused, true, true, LedPattern::On, LedPattern::BlinkFast},
-    {State::error, false, false, LedPattern::Off, LedPattern::On},
-    {State::error, true, false, LedPattern::Off, LedPattern::On},
-    {State::error, false, true, LedPattern::Off, LedPattern::On},
-    {State::error, true, true, LedPattern::Off, LedPattern::On},
-    {State::no_display, false, false, LedPattern::BlinkSlow, LedPattern::Off},
-    {State::no_display, true, false, LedPattern::BlinkSlow, LedPattern::BlinkSlow},
-    {State::no_display, false, true, LedPattern::BlinkSlow, LedPattern::BlinkFast},
-    {State::no_display, true, true, LedPattern::BlinkSlow, LedPattern::BlinkFast},
+    {State::starting, false, false, LedPattern::blink_fast, LedPattern::off},
+    {State::starting, true, false, LedPattern::blink_fast, LedPattern::blink_slow},
+    {State::starting, false, true, LedPattern::blink_fast, LedPattern::blink_fast},
+    {State::starting, true, true, LedPattern::blink_fast, LedPattern::blink_fast},
+    {State::loading, false, false, LedPattern::blink_slow, LedPattern::off},
+    {State::loading, true, false, LedPattern::blink_slow, LedPattern::blink_slow},
+    {State::loading, false, true, LedPattern::blink_slow, LedPattern::blink_fast},
+    {State::loading, true, true, LedPattern::blink_slow, LedPattern::blink_fast},
+    {State::playing, false, false, LedPattern::heartbeat, LedPattern::off},
+    {State::playing, true, false, LedPattern::heartbeat, LedPattern::blink_slow},
+    {State::playing, false, true, LedPattern::heartbeat, LedPattern::blink_fast},
+    {State::playing, true, true, LedPattern::heartbeat, LedPattern::blink_fast},
+    {State::paused, false, false, LedPattern::on, LedPattern::off},
+    {State::paused, true, false, LedPattern::on, LedPattern::blink_slow},
+    {State::paused, false, true, LedPattern::on, LedPattern::blink_fast},
+    {State::paused, true, true, LedPattern::on, LedPattern::blink_fast},
+    {State::error, false, false, LedPattern::off, LedPattern::on},
+    {State::error, true, false, LedPattern::off, LedPattern::on},
+    {State::error, false, true, LedPattern::off, LedPattern::on},
+    {State::error, true, true, LedPattern::off, LedPattern::on},
+    {State::no_display, false, false, LedPattern::blink_slow, LedPattern::off},
+    {State::no_display, true, false, LedPattern::blink_slow, LedPattern::blink_slow},
+    {State::no_display, false, true, LedPattern::blink_slow, LedPattern::blink_fast},
+    {State::no_display, true, true, LedPattern::blink_slow, LedPattern::blink_fast},
 };
 
 TEST(KioskLeds, EveryStateWithAndWithoutWarningsAndAFailedCheck) {
@@ -171,44 +186,44 @@ TEST(KioskLeds, EveryStateWithAndWithoutWarningsAndAFailedCheck) {
 
 TEST(KioskLeds, AnErrorBlinksTheErrorLedSlowlyForAMinute) {
   KioskState kiosk = in(State::playing);
-  EXPECT_EQ(kiosk.leds(100.0).error, LedPattern::Off) << "no error yet";
+  EXPECT_EQ(kiosk.leds(100.0).error, LedPattern::off) << "no error yet";
   kiosk.error_reported(100.0);
-  EXPECT_EQ(kiosk.leds(100.0).error, LedPattern::BlinkSlow);
-  EXPECT_EQ(kiosk.leds(159.9).error, LedPattern::BlinkSlow);
-  EXPECT_EQ(kiosk.leds(160.0).error, LedPattern::Off);
+  EXPECT_EQ(kiosk.leds(100.0).error, LedPattern::blink_slow);
+  EXPECT_EQ(kiosk.leds(159.9).error, LedPattern::blink_slow);
+  EXPECT_EQ(kiosk.leds(160.0).error, LedPattern::off);
   kiosk.error_reported(170.0);  // the same error again starts the minute again
-  EXPECT_EQ(kiosk.leds(229.0).error, LedPattern::BlinkSlow);
-  EXPECT_EQ(kiosk.leds(229.0).status, LedPattern::Heartbeat) << "errors leave the status LED alone";
+  EXPECT_EQ(kiosk.leds(229.0).error, LedPattern::blink_slow);
+  EXPECT_EQ(kiosk.leds(229.0).status, LedPattern::heartbeat) << "errors leave the status LED alone";
 }
 
 TEST(KioskLeds, AnErrorAtTimeZeroCountsToo) {
   KioskState kiosk;
   kiosk.error_reported(0.0);
-  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::BlinkSlow);
+  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::blink_slow);
 }
 
 TEST(KioskLeds, ALastingWarningBlinksUntilItClears) {
   KioskState kiosk = in(State::playing);
   kiosk.set_lasting_warning(true);  // the camera unplugged
-  EXPECT_EQ(kiosk.leds(1e6).error, LedPattern::BlinkSlow) << "however long it lasts";
+  EXPECT_EQ(kiosk.leds(1e6).error, LedPattern::blink_slow) << "however long it lasts";
   kiosk.set_lasting_warning(false);  // plugged back
-  EXPECT_EQ(kiosk.leds(1e6).error, LedPattern::Off);
+  EXPECT_EQ(kiosk.leds(1e6).error, LedPattern::off);
 }
 
 TEST(KioskLeds, AFailedSelfCheckBlinksFastUntilACheckPasses) {
   KioskState kiosk = in(State::playing);
   kiosk.check_finished(false);
   kiosk.set_lasting_warning(true);
-  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::BlinkFast) << "the failed check outranks a warning";
+  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::blink_fast) << "the failed check outranks a warning";
   kiosk.check_finished(true);
-  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::BlinkSlow) << "the warning shows again";
+  EXPECT_EQ(kiosk.leds(0.0).error, LedPattern::blink_slow) << "the warning shows again";
 }
 
 TEST(KioskLeds, TheErrorStateLightsTheErrorLedWhateverElseHolds) {
   KioskState kiosk = in(State::error);
   kiosk.error_reported(0.0);
   kiosk.check_finished(false);
-  EXPECT_EQ(kiosk.leds(0.0), (KioskState::LedPlan{LedPattern::Off, LedPattern::On}));
+  EXPECT_EQ(kiosk.leds(0.0), (KioskState::LedPlan{LedPattern::off, LedPattern::on}));
 }
 
 }  // namespace

@@ -29,7 +29,9 @@ Mode mode(int w, int h, double hz, bool preferred = false, bool interlaced = fal
 
 // A TV on HDMI that prefers 1080p60 but also offers 4K30 and 1080i, a switched-off second HDMI.
 std::vector<Connector> tv() {
-  Connector hdmi1{1, "HDMI-A-1", ConnectorState::connected,
+  Connector hdmi1{1,
+                  "HDMI-A-1",
+                  ConnectorState::connected,
                   {mode(1920, 1080, 60.0, true), mode(3840, 2160, 30.0), mode(1920, 1080, 59.94), mode(1920, 1080, 50.0),
                    mode(1920, 1080, 60.0, false, true), mode(1280, 720, 60.0), mode(640, 480, 59.94)}};
   Connector hdmi2{2, "HDMI-A-2", ConnectorState::disconnected, {}};
@@ -54,8 +56,8 @@ TEST(KmsMode, ParsesEveryFormMpvTakes) {
 }
 
 TEST(KmsMode, RefusesWhatIsNotAMode) {
-  for (const char* text : {"", "best", "1920", "1920x", "x1080", "0x1080", "1920x1080@", "1920x1080@0", "1920x1080@abc",
-                           "-1x5", "1920x1080x3", "1920 x1080", "1920x1080@60Hz", "99999999999x1"}) {
+  for (const char* text : {"", "best", "1920", "1920x", "x1080", "0x1080", "1920x1080@", "1920x1080@0", "1920x1080@abc", "-1x5",
+                           "1920x1080x3", "1920 x1080", "1920x1080@60Hz", "99999999999x1"}) {
     ModeRequest request;
     std::string error;
     EXPECT_FALSE(kms::parse_mode_request(text, request, error)) << text;
@@ -72,15 +74,16 @@ TEST(KmsMode, ChoosesAsTheRequestSays) {
     return kms::choose_mode(hdmi, request, error);
   };
   EXPECT_EQ(choose("preferred"), 0);
-  EXPECT_EQ(choose("highest"), 1);          // most pixels, whatever the refresh
-  EXPECT_EQ(choose("1920x1080"), 0);        // the highest refresh at that size, progressive
+  EXPECT_EQ(choose("highest"), 1);    // most pixels, whatever the refresh
+  EXPECT_EQ(choose("1920x1080"), 0);  // the highest refresh at that size, progressive
   EXPECT_EQ(choose("1920x1080@50"), 3);
   EXPECT_EQ(choose("1920x1080@59.94"), 2);  // the nearest within half a hertz, not 60
   EXPECT_EQ(choose("1920x1080@60"), 0);
-  EXPECT_EQ(choose("640x480@60"), 6);       // 59.94 is what a user means by 60
+  EXPECT_EQ(choose("640x480@60"), 6);  // 59.94 is what a user means by 60
   EXPECT_EQ(choose("1280x720@50"), -1);
-  EXPECT_EQ(error, "--drm-mode: HDMI-A-1 offers no mode 1280x720@50 (it offers 1920x1080@60.00 (preferred), 3840x2160@30.00, "
-                   "1920x1080@59.94, 1920x1080@50.00, 1920x1080i@60.00, 1280x720@60.00, 640x480@59.94)");
+  EXPECT_EQ(error,
+            "--drm-mode: HDMI-A-1 offers no mode 1280x720@50 (it offers 1920x1080@60.00 (preferred), 3840x2160@30.00, "
+            "1920x1080@59.94, 1920x1080@50.00, 1920x1080i@60.00, 1280x720@60.00, 640x480@59.94)");
 }
 
 TEST(KmsMode, WithoutAPreferredModeTheFirstIsTaken) {
@@ -186,8 +189,9 @@ std::vector<char> raw(const char (&text)[N]) {
 }
 
 TEST(Uevent, AKernelHotplugOfTheCardIsSeen) {
-  const auto message = raw("change@/devices/platform/vkms/drm/card0\0ACTION=change\0DEVPATH=/devices/platform/vkms/drm/card0\0"
-                            "SUBSYSTEM=drm\0HOTPLUG=1\0DEVNAME=dri/card0\0DEVTYPE=drm_minor\0SEQNUM=1234\0MAJOR=226\0MINOR=0");
+  const auto message =
+      raw("change@/devices/platform/vkms/drm/card0\0ACTION=change\0DEVPATH=/devices/platform/vkms/drm/card0\0"
+          "SUBSYSTEM=drm\0HOTPLUG=1\0DEVNAME=dri/card0\0DEVTYPE=drm_minor\0SEQNUM=1234\0MAJOR=226\0MINOR=0");
   uevent::Message parsed;
   ASSERT_TRUE(uevent::parse(message, parsed));
   EXPECT_EQ(parsed.action, "change");
@@ -200,8 +204,9 @@ TEST(Uevent, AKernelHotplugOfTheCardIsSeen) {
 
 TEST(Uevent, ASyntheticHotplugWrittenToSysfsIsSeen) {
   // echo "change $(uuid) HOTPLUG=1" > /sys/class/drm/card0/uevent: the kernel prefixes the argument.
-  const auto message = raw("change@/devices/platform/vkms/drm/card0\0ACTION=change\0DEVPATH=/devices/platform/vkms/drm/card0\0"
-                            "SUBSYSTEM=drm\0SYNTH_UUID=1c2a\0SYNTH_ARG_HOTPLUG=1\0DEVNAME=dri/card0\0SEQNUM=9\0");
+  const auto message =
+      raw("change@/devices/platform/vkms/drm/card0\0ACTION=change\0DEVPATH=/devices/platform/vkms/drm/card0\0"
+          "SUBSYSTEM=drm\0SYNTH_UUID=1c2a\0SYNTH_ARG_HOTPLUG=1\0DEVNAME=dri/card0\0SEQNUM=9\0");
   uevent::Message parsed;
   ASSERT_TRUE(uevent::parse(message, parsed));
   EXPECT_TRUE(parsed.hotplug);
@@ -210,9 +215,11 @@ TEST(Uevent, ASyntheticHotplugWrittenToSysfsIsSeen) {
 
 TEST(Uevent, OtherDevicesAndUdevCopiesAreNot) {
   uevent::Message parsed;
-  ASSERT_TRUE(uevent::parse(raw("add@/devices/virtual/input/input5\0ACTION=add\0SUBSYSTEM=input\0DEVNAME=input/event3\0"), parsed));
+  ASSERT_TRUE(
+      uevent::parse(raw("add@/devices/virtual/input/input5\0ACTION=add\0SUBSYSTEM=input\0DEVNAME=input/event3\0"), parsed));
   EXPECT_FALSE(uevent::is_drm_change_of(parsed, "/dev/dri/card0"));
-  ASSERT_TRUE(uevent::parse(raw("remove@/devices/platform/vkms/drm/card0\0ACTION=remove\0SUBSYSTEM=drm\0DEVNAME=dri/card0\0"), parsed));
+  ASSERT_TRUE(
+      uevent::parse(raw("remove@/devices/platform/vkms/drm/card0\0ACTION=remove\0SUBSYSTEM=drm\0DEVNAME=dri/card0\0"), parsed));
   EXPECT_FALSE(uevent::is_drm_change_of(parsed, "/dev/dri/card0"));
   EXPECT_FALSE(uevent::parse(raw("libudev\0\xfe\xed\xca\xfe"), parsed));
   EXPECT_FALSE(uevent::parse(raw("garbage without fields"), parsed));

@@ -189,7 +189,8 @@ TEST(LightfieldQuilt, InterleaveAssignsHandComputedViews) {
       EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel), test.views[channel])
           << test.x << "," << test.y << " channel " << channel;
       c.inverted_views = true;
-      EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel), test.inverted[channel])
+      EXPECT_EQ(lightfield::view_of_subpixel(lightfield::interleave_of(c, 10), c, test.x, test.y, channel),
+                test.inverted[channel])
           << "invView " << test.x << "," << test.y << " channel " << channel;
       c.inverted_views = false;
       c.flip_x = true;
@@ -296,15 +297,17 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
   };
   EXPECT_EQ(parse_error(replaced("count = 4", "count = 0")),
             "/tmp/lf-test/d.toml:8:9: modules.count: expected an integer in 1..1024, got 0");
-  EXPECT_EQ(parse_error(replaced("\"64x36\"", "\"64by36\"")),
-            "/tmp/lf-test/d.toml:12:14: modules.resolution: expected each module's image size as \"WxH\", each 1..16384, got '64by36'");
+  EXPECT_EQ(
+      parse_error(replaced("\"64x36\"", "\"64by36\"")),
+      "/tmp/lf-test/d.toml:12:14: modules.resolution: expected each module's image size as \"WxH\", each 1..16384, got '64by36'");
   EXPECT_EQ(parse_error(replaced("z = -1.2", "z = 0.5")),
             "/tmp/lf-test/d.toml:11:5: modules.z: expected a number < 0 (the modules stand behind the screen), got 0.5");
   EXPECT_EQ(parse_error(replaced("width = 1.6", "widht = 1.6")),
             "/tmp/lf-test/d.toml:3:9: screen.widht: unknown key (expected one of width, height)");
   EXPECT_EQ(parse_error(replaced("type = \"modules\"", "type = \"hologram\"")),
             "/tmp/lf-test/d.toml:1:8: type: expected \"modules\" or \"quilt\", got 'hologram'");
-  EXPECT_EQ(parse_error(replaced("[observer]\ndistance = 2.5\n", "")).substr(0, 43), "/tmp/lf-test/d.toml:1:1: observer: expected");
+  EXPECT_EQ(parse_error(replaced("[observer]\ndistance = 2.5\n", "")).substr(0, 43),
+            "/tmp/lf-test/d.toml:1:1: observer: expected");
   EXPECT_EQ(parse_error(replaced("count = 4", "count = 3\nx = [0.0, 1.0]")),
             "/tmp/lf-test/d.toml:8:9: modules.count: expected the number of entries of modules.x (2), got 3");
   EXPECT_EQ(parse_error(replaced("count = 4", "x = [0.0, 1.0]")),
@@ -325,12 +328,13 @@ TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
     "DPI": {"value": 300}, "screenW": {"value": 100}, "screenH": {"value": "fifty"}})";
   lightfield::Display display;
   std::string error;
-  EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"visual.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n",
-                                         display_path, display, error));
-  EXPECT_EQ(error, (dir / "visual.json").string() +
-                       ": screenH: expected an object {\"value\": number (an integer in 1..16384)}, got \"value\" of type string");
-  EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"absent.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n",
-                                         display_path, display, error));
+  EXPECT_FALSE(lightfield::parse_display(
+      "type = \"quilt\"\ncalibration = \"visual.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n", display_path, display, error));
+  EXPECT_EQ(error,
+            (dir / "visual.json").string() +
+                ": screenH: expected an object {\"value\": number (an integer in 1..16384)}, got \"value\" of type string");
+  EXPECT_FALSE(lightfield::parse_display(
+      "type = \"quilt\"\ncalibration = \"absent.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n", display_path, display, error));
   EXPECT_EQ(error, display_path + ":2:15: calibration: expected a readable file (" + (dir / "absent.json").string() +
                        " cannot be opened), got 'absent.json'");
   EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"v.json\"\nquilt = \"65x2\"\nview_size = \"50x25\"\n",

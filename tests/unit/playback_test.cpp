@@ -1,9 +1,9 @@
 // The playlist: the example plays as written, defaults, and every mistake's exact message.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "playback/playlist.h"
 
@@ -16,7 +16,9 @@ const std::string test_dir = PLAYBACK_TEST_DIR;
 // Does not exist, so no symlink resolution changes the paths in the messages.
 const std::string list = "/content/show/list.toml";
 
-std::string real(const fs::path& p) { return fs::weakly_canonical(p).string(); }
+std::string real(const fs::path& p) {
+  return fs::weakly_canonical(p).string();
+}
 
 // What the player's render settings would accept, as the app will pass it in.
 bool validate(std::string_view key, std::string_view value, std::string& error) {
@@ -153,10 +155,10 @@ TEST(Playlist, EveryKeySet) {
 }
 
 TEST(Playlist, SettingsTextIsWhatTheCommandLineTakes) {
-  const Playlist pl = parse_ok("[[item]]\nscene = \"a.glb\"\nao = { a = true, b = 0.1, c = 1e300, d = -7, e = 2.0, f = \"x y\" }\n",
-                               ParseOptions{});
-  EXPECT_EQ(pl.items[0].settings, (std::vector<Setting>{
-                                      {"a", "on"}, {"b", "0.1"}, {"c", "1e+300"}, {"d", "-7"}, {"e", "2"}, {"f", "x y"}}));
+  const Playlist pl = parse_ok(
+      "[[item]]\nscene = \"a.glb\"\nao = { a = true, b = 0.1, c = 1e300, d = -7, e = 2.0, f = \"x y\" }\n", ParseOptions{});
+  EXPECT_EQ(pl.items[0].settings,
+            (std::vector<Setting>{{"a", "on"}, {"b", "0.1"}, {"c", "1e+300"}, {"d", "-7"}, {"e", "2"}, {"f", "x y"}}));
 }
 
 TEST(Playlist, BuiltinScenesPassThroughAndAbsolutePathsInsideTheRootAreKept) {
@@ -198,7 +200,9 @@ struct ErrorCase {
   const char* error;  // after "/content/show/list.toml:"
 };
 
-void PrintTo(const ErrorCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const ErrorCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class PlaylistError : public testing::TestWithParam<ErrorCase> {};
 
@@ -219,8 +223,7 @@ const ErrorCase error_cases[] = {
     {"SeedFloat", "seed = 1.5\n" ITEM, "1:8: seed: expected an integer >= 0, got a floating-point number"},
     {"FadeNegative", "fade = -1.0\n" ITEM, "1:8: fade: expected a number of seconds >= 0, got -1"},
     {"FadeString", "fade = \"1s\"\n" ITEM, "1:8: fade: expected a number of seconds >= 0, got a string"},
-    {"ScheduleUnknown", "schedule = \"random\"\n" ITEM,
-     "1:12: schedule: expected one of sequential, wallclock, got \"random\""},
+    {"ScheduleUnknown", "schedule = \"random\"\n" ITEM, "1:12: schedule: expected one of sequential, wallclock, got \"random\""},
     {"UnknownTopLevelKey", "loop = true\nspeed = 2\n" ITEM,
      "2:1: speed: expected one of loop, shuffle, seed, fade, schedule, item, got an unknown key"},
     {"NoItems", "loop = true\n", "1:1: item: expected at least one [[item]] table, got nothing"},
@@ -298,8 +301,9 @@ const ErrorCase error_cases[] = {
     {"OrbitKeysNotTables", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [1, 2]\n",
      "5:8: item[0].camera.keys: expected an array of at least 2 tables { t = ..., azimuth = ..., elevation = ..., "
      "distance = ... }, got an array of non-tables"},
-    {"OrbitTNotIncreasing", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [\n  { t = 0.0, azimuth = 0.0 },\n"
-                                 "  { t = 3.0, azimuth = 90.0 },\n  { t = 3.0, azimuth = 180.0 },\n]\n",
+    {"OrbitTNotIncreasing",
+     ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [\n  { t = 0.0, azimuth = 0.0 },\n"
+          "  { t = 3.0, azimuth = 90.0 },\n  { t = 3.0, azimuth = 180.0 },\n]\n",
      "8:9: item[0].camera.keys[2].t: expected a time after the previous key's 3, got 3"},
     {"OrbitTDecreasing", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [ { t = 0 }, { t = 5 }, { t = 2.5 } ]\n",
      "5:38: item[0].camera.keys[2].t: expected a time after the previous key's 5, got 2.5"},

@@ -27,7 +27,9 @@ Playlist make(std::vector<double> durations, double fade = 0, bool loop = true) 
   return pl;
 }
 
-Cue at(Timeline& tl, double t) { return tl.at(t0 + t, wall0 + t); }
+Cue at(Timeline& tl, double t) {
+  return tl.at(t0 + t, wall0 + t);
+}
 
 struct Expect {
   double t;  // seconds after construction
@@ -60,8 +62,8 @@ std::vector<std::vector<int>> passes(std::uint64_t seed, int n, int count) {
 
 TEST(Timeline, ItemAtTimesAndLoopWrap) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
-  check(tl, {{0, 0, 0}, {3.5, 0, 3.5}, {4, 1, 0}, {9.75, 1, 5.75}, {10, 2, 0}, {19.5, 2, 9.5},
-             {20, 0, 0}, {25, 1, 1}, {41, 0, 1}});
+  check(tl,
+        {{0, 0, 0}, {3.5, 0, 3.5}, {4, 1, 0}, {9.75, 1, 5.75}, {10, 2, 0}, {19.5, 2, 9.5}, {20, 0, 0}, {25, 1, 1}, {41, 0, 1}});
 }
 
 TEST(Timeline, EarlierNowIsTreatedAsEqual) {
@@ -104,11 +106,11 @@ TEST(Timeline, FadeAtBoundaries) {
   // fade_s = 1: out over the last 0.5 s, in over the first 0.5 s of the next.
   Timeline tl(make({4, 6}, 1.0), t0, wall0);
   const std::vector<std::pair<double, float>> table = {
-      {0, 1.0f},     // the very first start does not fade in
-      {0.25, 1.0f}, {3.5, 1.0f}, {3.75, 0.5f}, {3.875, 0.25f},
-      {4.0, 0.0f},   // item 1 starts in black
-      {4.25, 0.5f}, {4.5, 1.0f}, {9.5, 1.0f}, {9.75, 0.5f},
-      {10.0, 0.0f},  // the loop back to item 0 fades like any other change
+      {0, 1.0f},  // the very first start does not fade in
+      {0.25, 1.0f},    {3.5, 1.0f},  {3.75, 0.5f},
+      {3.875, 0.25f},  {4.0, 0.0f},  // item 1 starts in black
+      {4.25, 0.5f},    {4.5, 1.0f},  {9.5, 1.0f},
+      {9.75, 0.5f},    {10.0, 0.0f},  // the loop back to item 0 fades like any other change
       {10.125, 0.25f}, {11, 1.0f}};
   for (const auto& [t, fade] : table) {
     SCOPED_TRACE("t = " + std::to_string(t));
@@ -507,7 +509,7 @@ TEST(CameraPath, OrbitThroughKeysThenHolds) {
   };
   // At t = 1: Hermite with tangents 0 (end) and (180 - 0) / 4 = 45 deg/s: 45 - 0.125 * 2 * 45 = 33.75.
   // Elevation and distance peak at the middle key, whose tangent is 0: a plain ease.
-  const std::vector<Row> table = {{-1, 0, 10, 1.2}, {0, 0, 10, 1.2}, {1, 33.75, 20, 1.1}, {2, 90, 30, 1.0},
+  const std::vector<Row> table = {{-1, 0, 10, 1.2},     {0, 0, 10, 1.2},   {1, 33.75, 20, 1.1}, {2, 90, 30, 1.0},
                                   {3, 146.25, 20, 1.1}, {4, 180, 10, 1.2}, {60, 180, 10, 1.2}};
   for (const Row& r : table) {
     SCOPED_TRACE(r.t);

@@ -1,9 +1,9 @@
 // The CPU reference on synthetic depth images whose AO is known in closed form.
-#include "ssao/params.h"
 #include "ssao/reference.h"
+#include "ssao/params.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -84,7 +84,7 @@ TEST(Reference, StepEdgeOccludesTheLowerSideOnly) {
   const auto ao = run(image, params);
   const float flat = plane_prediction(params);
   EXPECT_GT(ao[static_cast<size_t>(32 * kSize + kSize / 2 - 2)].x, flat + 0.05f);  // the foot of the step
-  EXPECT_NEAR(ao[static_cast<size_t>(32 * kSize + kSize / 2 + 8)].x, flat, 1e-3);   // on top, far from the edge
+  EXPECT_NEAR(ao[static_cast<size_t>(32 * kSize + kSize / 2 + 8)].x, flat, 1e-3);  // on top, far from the edge
 }
 
 TEST(Reference, RangeCheckIgnoresFarOccluders) {
@@ -149,7 +149,8 @@ TEST(Reference, HemisphereSamplesDoNotHideBehindTheirOwnSlantedFace) {
     }
   const std::vector<glm::vec3> normals(image.size(), normal);
   ASSERT_GT(0.1f * params.pixels_per_unit / 5.0f, 1.0f);  // the radius spans more than a pixel
-  const auto ao = ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, {}, params, 1.0f / 20.0f, settings.estimator);
+  const auto ao =
+      ssao::reference_ssao(ssao::build_depth_chain(image, kSize, kSize), normals, {}, params, 1.0f / 20.0f, settings.estimator);
   double sum = 0.0;
   for (int y = 4; y < kSize - 4; ++y)
     for (int x = 4; x < kSize - 4; ++x) {
@@ -193,7 +194,8 @@ TEST(Reference, HorizonDarkensWhereTheShadingNormalLeansOffItsFace) {
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
       const glm::vec2 ndc = (glm::vec2(x, y) + 0.5f) / static_cast<float>(kSize) * 2.0f - 1.0f;
-      const glm::vec3 ray((ndc.x + params.unproject.z) * params.unproject.x, (ndc.y + params.unproject.w) * params.unproject.y, -1.0f);
+      const glm::vec3 ray((ndc.x + params.unproject.z) * params.unproject.x, (ndc.y + params.unproject.w) * params.unproject.y,
+                          -1.0f);
       // The solid lies behind both planes: a ray enters it where it crosses the later one.
       const float t_left = glm::dot(left, ridge) / glm::dot(left, ray), t_right = glm::dot(right, ridge) / glm::dot(right, ray);
       const size_t i = static_cast<size_t>(y * kSize + x);
@@ -244,17 +246,17 @@ TEST(Reference, UpsamplingInterpolatesAlongASurfaceAndNotAcrossAnEdge) {
   const std::vector<float> depth = {0.2f, 0.205f, 0.21f, 0.21f, 0.6f, 0.6f,   // row 0
                                     0.2f, 0.6f,   0.21f, 0.6f,  0.3f, 0.0f};  // row 1
   const auto full = ssao::reference_upsample(low, depth, params);
-  EXPECT_EQ(full[0].x, 1.0f);    // on its own texel
-  EXPECT_EQ(full[1].x, 0.75f);   // halfway along the surface: the mean of both texels
+  EXPECT_EQ(full[0].x, 1.0f);   // on its own texel
+  EXPECT_EQ(full[1].x, 0.75f);  // halfway along the surface: the mean of both texels
   EXPECT_EQ(full[2].x, 0.5f);
-  EXPECT_EQ(full[3].x, 0.5f);    // beside an edge: only the texel on its own surface
+  EXPECT_EQ(full[3].x, 0.5f);  // beside an edge: only the texel on its own surface
   EXPECT_EQ(full[4].x, 0.0f);
-  EXPECT_EQ(full[5].x, 0.0f);    // the image's last column reads the last texel
-  EXPECT_EQ(full[6].x, 1.0f);    // row 1 reads row 0 (the only row) from below
-  EXPECT_EQ(full[7].x, 0.5f);    // depth 0.6 between texels 0 and 1: neither is its surface; 1 is closer
-  EXPECT_EQ(full[9].x, 0.0f);    // depth 0.6 between texels 1 and 2: texel 2's surface alone
-  EXPECT_EQ(full[10].x, 0.0f);   // depth 0.3 on texel 2 (0.6): not its surface, but the only candidate
-  EXPECT_EQ(full[11].x, 0.0f);   // background
+  EXPECT_EQ(full[5].x, 0.0f);   // the image's last column reads the last texel
+  EXPECT_EQ(full[6].x, 1.0f);   // row 1 reads row 0 (the only row) from below
+  EXPECT_EQ(full[7].x, 0.5f);   // depth 0.6 between texels 0 and 1: neither is its surface; 1 is closer
+  EXPECT_EQ(full[9].x, 0.0f);   // depth 0.6 between texels 1 and 2: texel 2's surface alone
+  EXPECT_EQ(full[10].x, 0.0f);  // depth 0.3 on texel 2 (0.6): not its surface, but the only candidate
+  EXPECT_EQ(full[11].x, 0.0f);  // background
   EXPECT_EQ(full[11].y, 0.0f);
 }
 
@@ -282,9 +284,9 @@ TEST(Reference, UpsamplingWeighsTexelsOffThePixelsTangentPlaneDown) {
   const auto by_plane = ssao::reference_upsample(low, depth, params, normals);
   // Texel 1's point lies 0.04 off pixel 1's plane, 20 tolerances: weight e^-20.
   EXPECT_NEAR(by_plane[1].x, 1.0f, 1e-3f);
-  EXPECT_EQ(by_plane[0].x, 1.0f);   // on its own texel, whatever the weights
-  EXPECT_EQ(by_plane[9].x, 0.5f);   // row 2 lies on texel row 1: one plane, plain bilinear
-  params.plane_tolerance = 0.0f;    // a tolerance of 0 turns the plane weights off
+  EXPECT_EQ(by_plane[0].x, 1.0f);  // on its own texel, whatever the weights
+  EXPECT_EQ(by_plane[9].x, 0.5f);  // row 2 lies on texel row 1: one plane, plain bilinear
+  params.plane_tolerance = 0.0f;   // a tolerance of 0 turns the plane weights off
   EXPECT_FLOAT_EQ(ssao::reference_upsample(low, depth, params, normals)[1].x, 0.5f);
 }
 
@@ -372,7 +374,7 @@ TEST(Reference, SkippedSubPixelRadiusGivesWhatComputingItGives) {
   settings.skip_radii = true;
   ssao::update_for_frame(params, settings, view);
   ASSERT_EQ(params.end_radius, params.first_radius + 1);  // the one radius is always kept...
-  settings.radii = 2;  // ...so skip the second of two instead
+  settings.radii = 2;                                     // ...so skip the second of two instead
   auto two = ssao::pack_ssao_params(settings, 0.02f, kSize, kSize);
   ssao::update_for_frame(two, settings, view);
   ASSERT_EQ(two.end_radius, 1);
@@ -413,11 +415,12 @@ TEST(Reference, GaussianBlurPreservesAConstantAndBilateralStopsAtDepthEdges) {
   // AO 1 at depth 0.2 on the left, AO 0 at depth 0.6 on the right.
   std::vector<ssao::AoTexel> edge(w * h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) edge[static_cast<size_t>(y * w + x)] = x < w / 2 ? ssao::AoTexel(1.0f, 0.2f) : ssao::AoTexel(0.0f, 0.6f);
+    for (int x = 0; x < w; ++x)
+      edge[static_cast<size_t>(y * w + x)] = x < w / 2 ? ssao::AoTexel(1.0f, 0.2f) : ssao::AoTexel(0.0f, 0.6f);
   const auto gaussian = ssao::reference_blur(edge, params, ssao::Blur::gaussian);
   const auto bilateral = ssao::reference_blur(edge, params, ssao::Blur::bilateral);
   const size_t left = static_cast<size_t>(4 * w + w / 2 - 1), right = left + 1;
-  EXPECT_LT(gaussian[left].x, 0.9f);   // the plain Gaussian bleeds across the edge
+  EXPECT_LT(gaussian[left].x, 0.9f);  // the plain Gaussian bleeds across the edge
   EXPECT_GT(gaussian[right].x, 0.1f);
   EXPECT_NEAR(bilateral[left].x, 1.0f, 1e-3);  // the bilateral one does not
   EXPECT_NEAR(bilateral[right].x, 0.0f, 1e-3);
@@ -476,8 +479,8 @@ TEST(Frame, AdvancingTurnsTheTileEvenlyRoundTheCircleOverFrames) {
       ssao::advance_frame(params, frame);
       double turn = 0.0;
       for (int i = 0; i < SSAO_ROTATION_TILE * SSAO_ROTATION_TILE; ++i) {
-        const double a = std::atan2(params.rotation[i].y, params.rotation[i].x) -
-                         std::atan2(base.rotation[i].y, base.rotation[i].x);
+        const double a =
+            std::atan2(params.rotation[i].y, params.rotation[i].x) - std::atan2(base.rotation[i].y, base.rotation[i].x);
         const double wrapped = std::remainder(a, 2.0 * 3.14159265358979);
         const double share = (wrapped < -1e-6 ? wrapped + 2.0 * 3.14159265358979 : std::max(wrapped, 0.0)) / gap;
         if (i == 0) turn = share;

@@ -1,6 +1,6 @@
+#include "ssao/sampling.h"
 #include "ssao/params.h"
 #include "ssao/reference.h"
-#include "ssao/sampling.h"
 #include "ssao/tables.h"
 
 #include <gtest/gtest.h>
@@ -333,7 +333,8 @@ TEST(Blur, WeightsAreAGaussianOfTheStatedSigma) {
       double sum = 0.0;
       for (int i = 0; i <= radius; ++i) sum += (i == 0 ? 1.0 : 2.0) * params.weights[i].x;
       for (int i = 0; i <= radius; ++i)
-        EXPECT_NEAR(params.weights[i].x / sum, expected[static_cast<size_t>(i)], 1e-6) << "sigma " << sigma << " radius " << radius << " tap " << i;
+        EXPECT_NEAR(params.weights[i].x / sum, expected[static_cast<size_t>(i)], 1e-6)
+            << "sigma " << sigma << " radius " << radius << " tap " << i;
       for (int i = radius + 1; i <= BLUR_MAX_RADIUS; ++i) EXPECT_EQ(params.weights[i].x, 0.0f) << "beyond the radius, tap " << i;
     }
   // The paper's blur as this project configures it by default: radius 4, sigma 2 (docs/ao.md, "Blur").
@@ -366,7 +367,8 @@ TEST(Blur, ReferenceBlurOfAnImpulseIsTheNormalisedGaussian) {
         for (int x = 0; x < width; ++x) {
           const glm::ivec2 offset = glm::ivec2(x, y) - centre;
           const int along = direction == 0 ? offset.x : offset.y, across = direction == 0 ? offset.y : offset.x;
-          const double want = across == 0 && std::abs(along) <= settings.radius ? expected[static_cast<size_t>(std::abs(along))] : 0.0;
+          const double want =
+              across == 0 && std::abs(along) <= settings.radius ? expected[static_cast<size_t>(std::abs(along))] : 0.0;
           EXPECT_NEAR(out[static_cast<size_t>(y * width + x)].x, want, want * 0x1p-10)
               << "direction " << direction << " bilateral " << bilateral << " pixel " << x << ", " << y;
           EXPECT_EQ(out[static_cast<size_t>(y * width + x)].y, 0.5f);
@@ -398,7 +400,7 @@ TEST(Sampling, HemisphereKernelsAreCosineWeightedAboutZ) {
     mean_z += d.z / 20000.0;
     mean_z2 += d.z * d.z / 20000.0;
   }
-  EXPECT_NEAR(mean_z, 2.0 / 3.0, 0.01);   // sd of z is 0.24: 4 standard errors of the mean is 0.007
+  EXPECT_NEAR(mean_z, 2.0 / 3.0, 0.01);  // sd of z is 0.24: 4 standard errors of the mean is 0.007
   EXPECT_NEAR(mean_z2, 0.5, 0.01);
   for (const glm::dvec3& p : ssao::make_kernel(ssao::Estimator::hemisphere, Pattern::jittered, 16)) {
     EXPECT_GE(p.z, 0.0);

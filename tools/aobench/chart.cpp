@@ -79,8 +79,9 @@ bool write_chart(const std::string& path, const std::vector<ChartPoint>& points,
 
   const auto& dot = kPointColour;
   const auto& front = kFrontColour;
-  for (const ChartPoint& p : points) OIIO::ImageBufAlgo::render_box(chart, x_of(p.time_ms) - 2, y_of(p.error) - 2,
-                                                                      x_of(p.time_ms) + 2, y_of(p.error) + 2, dot, true);
+  for (const ChartPoint& p : points)
+    OIIO::ImageBufAlgo::render_box(chart, x_of(p.time_ms) - 2, y_of(p.error) - 2, x_of(p.time_ms) + 2, y_of(p.error) + 2, dot,
+                                   true);
   const std::vector<size_t> on_front = pareto_front(points);
   for (size_t i = 0; i + 1 < on_front.size(); ++i) {
     const ChartPoint &a = points[on_front[i]], &b = points[on_front[i + 1]];

@@ -6,7 +6,7 @@ namespace aobench {
 namespace {
 
 render::FrameSettings defaults() {
-  render::FrameSettings settings;  // the player's defaults
+  render::FrameSettings settings;    // the player's defaults
   settings.reuse_static_ao = false;  // every frame computes its AO, so every frame times it
   // One frame's AO: the timed frames repeat one camera, and with accumulation the estimate would be
   // their average. temporal=on in --configs measures that.
@@ -28,7 +28,8 @@ render::FrameSettings paper() {
 }
 
 // Always written by describe(), so a configuration reads the same in every row of the CSV.
-constexpr const char* kCoreKeys[] = {"estimator", "samples", "radii", "pattern", "blur", "resolution", "depth-chain", "skip-radii"};
+constexpr const char* kCoreKeys[] = {"estimator", "samples",    "radii",       "pattern",
+                                     "blur",      "resolution", "depth-chain", "skip-radii"};
 
 }  // namespace
 
@@ -60,17 +61,18 @@ std::vector<Config> sweep(const std::string& kind) {
   std::vector<Config> configs;
   if (kind == "ablation") {
     std::string error;
-    for (const char* spec : {"default", "skip-background=off", "untextured-variant=off", "reuse-ao=on", "prepass=on",
-                             "prepass=off", "depth-chain=on", "resolution=full", "radii=5", "radii=5,skip-radii=off",
-                             "radii=5,depth-chain=on"})
+    for (const char* spec :
+         {"default", "skip-background=off", "untextured-variant=off", "reuse-ao=on", "prepass=on", "prepass=off",
+          "depth-chain=on", "resolution=full", "radii=5", "radii=5,skip-radii=off", "radii=5,depth-chain=on"})
       configs.push_back(*parse_config(spec, error));
     return configs;
   }
   const bool full = kind == "full";
   const std::vector<int> samples = full ? std::vector<int>{2, 4, 8, 16, 32, 64} : std::vector<int>{4, 8, 16, 32};
   const std::vector<int> radii = full ? std::vector<int>{1, 2, 3, 4, 5} : std::vector<int>{1, 3, 5};
-  const std::vector<ssao::Pattern> patterns = full ? std::vector<ssao::Pattern>(std::begin(ssao::kPatterns), std::end(ssao::kPatterns))
-                                                   : std::vector<ssao::Pattern>{ssao::Pattern::poisson};
+  const std::vector<ssao::Pattern> patterns =
+      full ? std::vector<ssao::Pattern>(std::begin(ssao::kPatterns), std::end(ssao::kPatterns))
+           : std::vector<ssao::Pattern>{ssao::Pattern::poisson};
   // The horizon spaces its slices evenly whatever the pattern: one pattern measures it.
   const std::vector<ssao::Pattern> horizon_patterns{ssao::Pattern::poisson};
   for (ssao::Estimator estimator : ssao::kEstimators)

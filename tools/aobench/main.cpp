@@ -8,15 +8,16 @@
 #include "chart.h"
 #include "configs.h"
 #include "gl/caps.h"
-#include "gl/session.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
+#include "platform/platform.h"
 #include "render/renderer.h"
 #include "render/settings.h"
-#include "platform/platform.h"
 #include "scene/load.h"
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,13 +27,24 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <unistd.h>
 
 namespace {
 
 // The settings columns of the CSV, in the codec's names.
-constexpr const char* kCsvSettings[] = {"estimator", "samples", "steps", "radii", "pattern", "blur", "resolution", "depth-chain",
-                                        "skip-radii", "skip-background", "untextured-variant", "reuse-ao", "temporal", "prepass"};
+constexpr const char* kCsvSettings[] = {"estimator",
+                                        "samples",
+                                        "steps",
+                                        "radii",
+                                        "pattern",
+                                        "blur",
+                                        "resolution",
+                                        "depth-chain",
+                                        "skip-radii",
+                                        "skip-background",
+                                        "untextured-variant",
+                                        "reuse-ao",
+                                        "temporal",
+                                        "prepass"};
 
 namespace fs = std::filesystem;
 
@@ -118,18 +130,31 @@ double median(std::vector<double> values) {
 int main(int argc, char** argv) {
   Options options;
   CLI::App cli{"aobench: AO run time against error over scenes, views and configurations"};
-  cli.add_option("--scene", options.scenes, "Scenes (.gltf/.glb or builtin:NAME); default: builtin:demo and ../shared/scenes/*.glb");
+  cli.add_option("--scene", options.scenes,
+                 "Scenes (.gltf/.glb or builtin:NAME); default: builtin:demo and ../shared/scenes/*.glb");
   cli.add_option("--size", options.size, "Image size WxH")->capture_default_str();
-  cli.add_option("--frames", options.frames, "Timed frames per configuration (after one warm-up)")->check(CLI::Range(1, 1000))->capture_default_str();
-  cli.add_option("--views", options.views, "Views per scene (azimuths spread round the scene)")->check(CLI::Range(1, 12))->capture_default_str();
-  cli.add_option("--distance", options.distance,
-                 "Camera distance as a multiple of the distance at which the scene just fits (far views shrink the radii on screen)")
-      ->check(CLI::Range(0.2, 100.0))->capture_default_str();
-  cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")->check(CLI::Range(8, 1 << 16))->capture_default_str();
-  cli.add_option("--config", options.configs, "Configurations: paper, default, or key=value,... (see docs/ao.md); default: paper and default");
-  cli.add_option("--sweep", options.sweep, "Add a grid: quick, full, or ablation (the default with each saving turned off in turn)")
+  cli.add_option("--frames", options.frames, "Timed frames per configuration (after one warm-up)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cli.add_option("--views", options.views, "Views per scene (azimuths spread round the scene)")
+      ->check(CLI::Range(1, 12))
+      ->capture_default_str();
+  cli.add_option(
+         "--distance", options.distance,
+         "Camera distance as a multiple of the distance at which the scene just fits (far views shrink the radii on screen)")
+      ->check(CLI::Range(0.2, 100.0))
+      ->capture_default_str();
+  cli.add_option("--rays", options.rays, "Reference rays per pixel (per radius for the sphere reference)")
+      ->check(CLI::Range(8, 1 << 16))
+      ->capture_default_str();
+  cli.add_option("--config", options.configs,
+                 "Configurations: paper, default, or key=value,... (see docs/ao.md); default: paper and default");
+  cli.add_option("--sweep", options.sweep,
+                 "Add a grid: quick, full, or ablation (the default with each saving turned off in turn)")
       ->check(CLI::IsMember({"quick", "full", "ablation"}));
-  cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")->check(CLI::IsMember(platform::names()))->capture_default_str();
+  cli.add_option("--platform", options.platform, "GL platform: auto, egl or osmesa")
+      ->check(CLI::IsMember(platform::names()))
+      ->capture_default_str();
   cli.add_option("-o,--csv", options.csv, "CSV output")->capture_default_str();
   cli.add_option("--chart", options.chart, "PNG chart output: time against MAE")->capture_default_str();
   cli.add_option("--noise-chart", options.noise_chart, "PNG chart output: time against the error's high-frequency noise")
@@ -287,12 +312,13 @@ int main(int argc, char** argv) {
           const render::PassTimes pass = renderer.collect_times();
           double ao_ms = 0.0, frame_ms = 0.0;
           // Upsampling happens inside the present pass, which also shades: it is in frame_ms, not here.
-          for (int p : {render::kDepthChain, render::kSsao, render::kTemporal, render::kBlurH, render::kBlurV})
-            ao_ms += std::max(0.0, pass.ms[static_cast<size_t>(p)]);
+          for (render::Pass p : {render::Pass::depth_chain, render::Pass::ssao, render::Pass::temporal, render::Pass::blur_h,
+                                 render::Pass::blur_v})
+            ao_ms += std::max(0.0, pass[p]);
           for (double ms : pass.ms) frame_ms += std::max(0.0, ms);
           if (frame > 0) {
             times.push_back(ao_ms);
-            raster_times.push_back(std::max(0.0, pass.ms[render::kDepthPrepass]) + std::max(0.0, pass.ms[render::kGBuffer]));
+            raster_times.push_back(std::max(0.0, pass[render::Pass::depth_prepass]) + std::max(0.0, pass[render::Pass::gbuffer]));
             frame_times.push_back(frame_ms);
           }
         }
@@ -350,9 +376,10 @@ int main(int argc, char** argv) {
         }
         csv << '"' << scene_spec << "\"," << view_index << ",\"" << config.name << "\"";
         for (const char* key : kCsvSettings) csv << ',' << render::setting_value(config.settings, key);
-        csv << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ',' << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ','
-            << row.own.edge_mae << ',' << row.near_field.mae << ',' << row.near_field.rmse << ',' << row.near_field.ssim << ','
-            << row.near_field.bias << ',' << row.near_field.noise;
+        csv << ',' << row.time_ms << ',' << median(raster_times) << ',' << row.frame_ms << ',' << row.reference << ','
+            << row.own.mae << ',' << row.own.rmse << ',' << row.own.ssim << ',' << row.own.edge_mae << ',' << row.near_field.mae
+            << ',' << row.near_field.rmse << ',' << row.near_field.ssim << ',' << row.near_field.bias << ','
+            << row.near_field.noise;
         for (double mae : row.still_mae) csv << ',' << mae;
         for (double mae : row.turn_mae) csv << ',' << mae;
         csv << ',' << row.still_noise << ',' << row.turn_noise << ',' << row.instability << "\n";
@@ -395,15 +422,16 @@ int main(int argc, char** argv) {
   std::cout << "\nmean over " << options.scenes.size() * static_cast<size_t>(options.views)
             << " scene views (error: MAE against the near-field reference; own: against the estimator's own reference)\n";
   std::cout << std::left << std::setw(12) << "AO ms" << std::setw(12) << "frame ms" << std::setw(12) << "MAE" << std::setw(12)
-            << "own MAE" << std::setw(12) << "bias" << std::setw(12) << "noise" << std::setw(12) << "MAE still16" << std::setw(12) << "noise st16"
-            << std::setw(12) << "MAE turn16" << std::setw(12) << "instability" << "configuration\n";
+            << "own MAE" << std::setw(12) << "bias" << std::setw(12) << "noise" << std::setw(12) << "MAE still16" << std::setw(12)
+            << "noise st16" << std::setw(12) << "MAE turn16" << std::setw(12) << "instability"
+            << "configuration\n";
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].on_front && points[i].mark.empty() && configs.size() > 40) continue;
     const int n = std::max(counts[order[i]], 1);
     std::cout << std::left << std::setw(12) << std::setprecision(4) << points[i].time_ms << std::setw(12)
-              << frame_totals[order[i]] / n << std::setw(12) << points[i].error
-              << std::setw(12) << own_totals[order[i]] / n << std::setw(12) << bias_totals[order[i]] / n << std::setw(12)
-              << noise_totals[order[i]] / n << std::setw(12) << still_totals[order[i]] / n << std::setw(12) << still_noise_totals[order[i]] / n << std::setw(12)
+              << frame_totals[order[i]] / n << std::setw(12) << points[i].error << std::setw(12) << own_totals[order[i]] / n
+              << std::setw(12) << bias_totals[order[i]] / n << std::setw(12) << noise_totals[order[i]] / n << std::setw(12)
+              << still_totals[order[i]] / n << std::setw(12) << still_noise_totals[order[i]] / n << std::setw(12)
               << turn_totals[order[i]] / n << std::setw(12) << instability_totals[order[i]] / n << order[i]->name
               << (points[i].on_front ? "  [front]" : "") << (points[i].mark.empty() ? "" : "  <- " + points[i].mark) << "\n";
   }

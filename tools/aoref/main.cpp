@@ -6,8 +6,8 @@
 #include "aoref/reference.h"
 #include "scene/load.h"
 
-#include <CLI/CLI.hpp>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -32,8 +32,8 @@ std::function<void(int, int)> progress_reporter(bool quiet) {
       constexpr int width = 40;
       const int filled = static_cast<int>(fraction * width);
       std::fprintf(stderr, "\r[%s%s] %3d%% (%d/%d rows)", std::string(static_cast<size_t>(filled), '#').c_str(),
-                   std::string(static_cast<size_t>(width - filled), '.').c_str(), static_cast<int>(fraction * 100.0),
-                   done, total);
+                   std::string(static_cast<size_t>(width - filled), '.').c_str(), static_cast<int>(fraction * 100.0), done,
+                   total);
       if (done == total) std::fputc('\n', stderr);
     } else {
       const int tenth = static_cast<int>(fraction * 10.0);
@@ -68,7 +68,8 @@ int main(int argc, char** argv) try {
       ->capture_default_str();
   app.add_option("--radius", settings.radius, "near-field only: R in world units; default the largest radius of camera.json")
       ->check(CLI::PositiveNumber);
-  app.add_option("--seed", settings.seed, "Seed of the per-pixel sample shifts (results are reproducible)")->capture_default_str();
+  app.add_option("--seed", settings.seed, "Seed of the per-pixel sample shifts (results are reproducible)")
+      ->capture_default_str();
   app.add_option("--threads", settings.threads, "Worker threads; 0: one per hardware thread")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
@@ -81,7 +82,9 @@ int main(int argc, char** argv) try {
   app.add_option("--error-map", error_map_path,
                  "With --compare: a PNG of estimate - reference per object pixel (red: estimate darker, blue: lighter, "
                  "full colour at --error-scale, white: no error)");
-  app.add_option("--error-scale", error_scale, "The error that --error-map shows in full colour")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--error-scale", error_scale, "The error that --error-map shows in full colour")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "No progress on stderr");
   CLI11_PARSE(app, argc, argv);
 
@@ -105,7 +108,8 @@ int main(int argc, char** argv) try {
   scene::Scene source;
   std::ostringstream log;
   if (!scene::load(scene_spec, source, error, log))
-    return die(error + (scene_spec == dump.scene ? " (the scene named in " + dump_dir + "/camera.json; --scene overrides it)" : ""));
+    return die(error +
+               (scene_spec == dump.scene ? " (the scene named in " + dump_dir + "/camera.json; --scene overrides it)" : ""));
   if (!log.str().empty() && !quiet) std::cerr << log.str();
   aoref::RayScene rays;
   if (!rays.build(source, error)) return die(scene_spec + ": " + error);
@@ -123,27 +127,32 @@ int main(int argc, char** argv) try {
   }
   if (!aoref::write_exr(output, out, {"Y", "SE"}, error)) return die(error);
 
-  std::printf("%s: %zu triangles (%zu degenerate skipped), %dx%d, %zu object pixels\n", scene_spec.c_str(),
-              rays.triangle_count(), rays.skipped_triangles(), out.width, out.height, result.object_pixels);
-  std::printf("reference %s: %d rays per pixel%s, %.3g rays in %.2f s (%.3g rays/s)\n",
-              std::string(aoref::name(settings.reference)).c_str(), settings.rays,
-              settings.reference == aoref::Reference::sphere ? (" per radius x " + std::to_string(dump.view.radii.size())).c_str() : "",
-              static_cast<double>(result.rays_traced), seconds, seconds > 0.0 ? static_cast<double>(result.rays_traced) / seconds : 0.0);
+  std::printf("%s: %zu triangles (%zu degenerate skipped), %dx%d, %zu object pixels\n", scene_spec.c_str(), rays.triangle_count(),
+              rays.skipped_triangles(), out.width, out.height, result.object_pixels);
+  std::printf(
+      "reference %s: %d rays per pixel%s, %.3g rays in %.2f s (%.3g rays/s)\n",
+      std::string(aoref::name(settings.reference)).c_str(), settings.rays,
+      settings.reference == aoref::Reference::sphere ? (" per radius x " + std::to_string(dump.view.radii.size())).c_str() : "",
+      static_cast<double>(result.rays_traced), seconds, seconds > 0.0 ? static_cast<double>(result.rays_traced) / seconds : 0.0);
   double ao_sum = 0.0;
   for (size_t i = 0; i < result.ao.pixel_count(); ++i) ao_sum += result.ao.at(i);
-  std::printf("mean AO over object pixels %.4f\n", result.object_pixels ? ao_sum / static_cast<double>(result.object_pixels) : 0.0);
+  std::printf("mean AO over object pixels %.4f\n",
+              result.object_pixels ? ao_sum / static_cast<double>(result.object_pixels) : 0.0);
   std::printf("noise: binomial standard error per pixel max %.4f, mean %.4f\n", result.max_standard_error,
               result.mean_standard_error);
   std::printf("wrote %s (Y: AO, SE: standard error)\n", output.c_str());
   if (!compare_path.empty()) {
     const aoref::Metrics m = aoref::compare(estimate, result.ao, dump.depth);
-    std::printf("%s vs reference over %zu object pixels: MAE %.4f  RMSE %.4f  bias %+.4f  noise %.4f  SSIM %.4f  edge MAE %.4f (%zu px within 3 px of depth edges)\n",
-                compare_path.c_str(), m.pixels, m.mae, m.rmse, m.bias, m.noise, m.ssim, m.edge_mae, m.edge_pixels);
+    std::printf(
+        "%s vs reference over %zu object pixels: MAE %.4f  RMSE %.4f  bias %+.4f  noise %.4f  SSIM %.4f  edge MAE %.4f (%zu px "
+        "within 3 px of depth edges)\n",
+        compare_path.c_str(), m.pixels, m.mae, m.rmse, m.bias, m.noise, m.ssim, m.edge_mae, m.edge_pixels);
     if (!error_map_path.empty()) {
       if (!aoref::write_rgb8(error_map_path, estimate.width, estimate.height,
                              aoref::error_map(estimate, result.ao, dump.depth, error_scale), error))
         return die(error);
-      std::printf("wrote %s (estimate - reference, +-%g in full colour)\n", error_map_path.c_str(), static_cast<double>(error_scale));
+      std::printf("wrote %s (estimate - reference, +-%g in full colour)\n", error_map_path.c_str(),
+                  static_cast<double>(error_scale));
     }
   }
   return 0;

@@ -6,8 +6,8 @@
 // 45-view quilt. (4) View consistency: the spread of AO for one world point across the modules that
 // see it, against the spread between neighbouring pixels of one module (its noise).
 #include "gl/caps.h"
-#include "gl/session.h"
 #include "gl/gl_api.h"
+#include "gl/session.h"
 #include "lightfield/display_file.h"
 #include "platform/platform.h"
 #include "render/light_field.h"
@@ -65,7 +65,8 @@ std::vector<std::pair<glm::dvec3, glm::dvec3>> edges_of(const scene::Scene& scen
 void measure_edges(const Options& options) {
   std::cout << "# Edge bending: pixels between where the rasteriser draws an edge point and where the module shows it\n";
   std::cout << std::left << std::setw(22) << "scene" << std::setw(22) << "display" << std::right << std::setw(9) << "edges"
-            << std::setw(11) << "max px" << std::setw(11) << "p99.9 px" << std::setw(14) << "edges >0.5px" << "\n";
+            << std::setw(11) << "max px" << std::setw(11) << "p99.9 px" << std::setw(14) << "edges >0.5px"
+            << "\n";
   for (const std::string& spec : options.scenes) {
     scene::Scene scene;
     if (!load_scene(spec, scene)) continue;
@@ -86,7 +87,7 @@ void measure_edges(const Options& options) {
         const lightfield::Module module = lightfield::module_of(m, k);
         for (size_t e = 0; e < edges.size(); ++e)
           worst_per_edge[e] = std::max(worst_per_edge[e], lightfield::edge_error_pixels(module, roi->to_physical(edges[e].first),
-                                                                                       roi->to_physical(edges[e].second)));
+                                                                                        roi->to_physical(edges[e].second)));
       }
       std::vector<double> sorted = worst_per_edge;
       std::sort(sorted.begin(), sorted.end());
@@ -180,7 +181,8 @@ void measure_consistency(gl::Session& session, const scene::Scene& scene, const 
   });
   renderer.render();
   const int w = display.modules.width, h = display.modules.height;
-  const double pixel_world = (display.modules.footprint.y - display.modules.footprint.x) / w / renderer.output().view(0).module->roi.scale;
+  const double pixel_world =
+      (display.modules.footprint.y - display.modules.footprint.x) / w / renderer.output().view(0).module->roi.scale;
   Spread across_raw, across_shaded, within_raw, within_shaded;  // raw: before the blur; shaded: after
   for (int k = 0; k < renderer.output().views(); ++k) {
     const ModuleCapture& c = captures[static_cast<size_t>(k)];
@@ -213,7 +215,8 @@ void measure_consistency(gl::Session& session, const scene::Scene& scene, const 
           const int u = static_cast<int>(image->x), v_bottom = h - 1 - static_cast<int>(image->y);
           const size_t p = static_cast<size_t>(v_bottom * w + u);
           const ModuleCapture& other = captures[static_cast<size_t>(j)];
-          const glm::dvec3 seen(other.surface.position[p * 4], other.surface.position[p * 4 + 1], other.surface.position[p * 4 + 2]);
+          const glm::dvec3 seen(other.surface.position[p * 4], other.surface.position[p * 4 + 1],
+                                other.surface.position[p * 4 + 2]);
           if (other.surface.position[p * 4 + 3] <= 0.0f || glm::length(seen - world) > pixel_world) continue;  // hidden there
           same_raw.push_back(other.raw[p]);
           same_shaded.push_back(other.shaded[p]);
@@ -223,9 +226,9 @@ void measure_consistency(gl::Session& session, const scene::Scene& scene, const 
       }
   }
   std::cout << std::fixed << std::setprecision(4) << std::left << std::setw(26)
-            << (pixel_turns ? "  turns by pixel tile" : "  turns by world cell") << std::setw(10) << ssao::name(blur) << std::right
-            << std::setw(12) << across_raw.value() << std::setw(12) << across_shaded.value() << std::setw(12) << within_raw.value()
-            << std::setw(12) << within_shaded.value() << std::setw(9) << across_raw.count << "\n";
+            << (pixel_turns ? "  turns by pixel tile" : "  turns by world cell") << std::setw(10) << ssao::name(blur)
+            << std::right << std::setw(12) << across_raw.value() << std::setw(12) << across_shaded.value() << std::setw(12)
+            << within_raw.value() << std::setw(12) << within_shaded.value() << std::setw(9) << across_raw.count << "\n";
 }
 
 int run(const Options& options) {
@@ -248,8 +251,8 @@ int run(const Options& options) {
     return 1;
   }
   const gl::Caps& caps = session->caps();
-  std::cout << "# Frame cost on " << session->platform().name() << " (" << caps.renderer << "), CPU clock around glFinish, median of "
-            << options.frames << " frames after one warm-up\n";
+  std::cout << "# Frame cost on " << session->platform().name() << " (" << caps.renderer
+            << "), CPU clock around glFinish, median of " << options.frames << " frames after one warm-up\n";
   lightfield::Display c80;
   if (!lightfield::load_display(options.board_dir + "/holovizio-c80.toml", c80, error)) {
     std::cerr << "lfbench: " << error << "\n";
@@ -260,7 +263,8 @@ int run(const Options& options) {
     if (!load_scene(spec, scene)) return 1;
     std::cout << scene.name << ", modules of " << width << "x" << height << " on the HoloVizio C80 geometry:\n";
     std::cout << std::right << std::setw(8) << "modules" << std::setw(10) << "rendered" << std::setw(12) << "frame ms"
-              << std::setw(12) << "no-AO ms" << std::setw(10) << "x one" << std::setw(16) << "SSAO ms/module" << "\n";
+              << std::setw(12) << "no-AO ms" << std::setw(10) << "x one" << std::setw(16) << "SSAO ms/module"
+              << "\n";
     double one = 0.0;
     for (int count : options.module_counts) {
       lightfield::Display display = c80;
@@ -290,12 +294,17 @@ int run(const Options& options) {
       return 1;
     }
     std::cout << scene.name << " on desk-8.toml (" << desk.views() << " modules of " << desk.modules.width << "x"
-              << desk.modules.height << ", hemisphere): standard deviation of AO for one world point across the modules that see it\n"
-              << "(across) and across a 3x3 pixel neighbourhood of one module (within), before the blur (raw) and after, where AO >= 0.05\n";
-    std::cout << std::left << std::setw(26) << "  sample turns" << std::setw(10) << "blur" << std::right << std::setw(12) << "across raw"
-              << std::setw(12) << "across" << std::setw(12) << "within raw" << std::setw(12) << "within" << std::setw(9) << "points" << "\n";
+              << desk.modules.height
+              << ", hemisphere): standard deviation of AO for one world point across the modules that see it\n"
+              << "(across) and across a 3x3 pixel neighbourhood of one module (within), before the blur (raw) and after, where "
+                 "AO >= 0.05\n";
+    std::cout << std::left << std::setw(26) << "  sample turns" << std::setw(10) << "blur" << std::right << std::setw(12)
+              << "across raw" << std::setw(12) << "across" << std::setw(12) << "within raw" << std::setw(12) << "within"
+              << std::setw(9) << "points"
+              << "\n";
     for (const bool pixel_turns : {false, true})
-      for (const ssao::Blur blur : {ssao::Blur::off, ssao::Blur::bilateral}) measure_consistency(*session, scene, desk, pixel_turns, blur);
+      for (const ssao::Blur blur : {ssao::Blur::off, ssao::Blur::bilateral})
+        measure_consistency(*session, scene, desk, pixel_turns, blur);
     std::cout << "quilt " << quilt.quilt.columns << "x" << quilt.quilt.rows << " (" << rendered << " views of "
               << quilt.quilt.view_width << "x" << quilt.quilt.view_height << ") + interleave to "
               << quilt.quilt.calibration.screen_width << "x" << quilt.quilt.calibration.screen_height << ": " << with_ao
@@ -316,7 +325,9 @@ int main(int argc, char** argv) {
   cli.add_option("--platform", options.platform, "GL platform: " + platform::names_text())->capture_default_str();
   cli.add_option("--size", options.size, "Each module's image size for the timing")->capture_default_str();
   cli.add_option("--modules", options.module_counts, "Module counts to time")->capture_default_str();
-  cli.add_option("--frames", options.frames, "Frames per measurement (after one warm-up)")->check(CLI::Range(1, 1000))->capture_default_str();
+  cli.add_option("--frames", options.frames, "Frames per measurement (after one warm-up)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   cli.add_flag("--edges-only", options.edges_only, "Only the edge-bending measurement (no GL)");
   CLI11_PARSE(cli, argc, argv);
   return run(options);

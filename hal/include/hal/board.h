@@ -11,7 +11,7 @@
 
 namespace hal {
 
-enum class Bias : std::uint8_t { AsIs, Disable, PullUp, PullDown };
+enum class Bias : std::uint8_t { as_is, disable, pull_up, pull_down };
 
 // A GPIO line, by line name (stable across Pi 4 and Pi 5, e.g. "GPIO17") or by chip + offset.
 struct GpioLine {
@@ -19,7 +19,7 @@ struct GpioLine {
   int offset = -1;
   std::string line_name;
   bool active_low = false;
-  Bias bias = Bias::AsIs;
+  Bias bias = Bias::as_is;
   std::string describe() const;  // "line GPIO17" or "gpiochip0:17", for error messages
 };
 
@@ -66,7 +66,7 @@ struct BoardConfig {
 
 // Thrown only while loading, never once running: "<file>: <field>: expected <what>, got <what>".
 class ConfigError : public std::runtime_error {
-public:
+ public:
   using std::runtime_error::runtime_error;
 };
 

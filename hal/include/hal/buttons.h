@@ -8,12 +8,12 @@
 
 namespace hal {
 
-enum class ButtonAction : std::uint8_t { Press, Release, LongPress, Repeat };
+enum class ButtonAction : std::uint8_t { press, release, long_press, repeat };
 std::string_view to_string(ButtonAction a);
 
 struct ButtonEvent {
   std::uint8_t button = 0;  // index into the board's button list; Buttons::name() gives its name
-  ButtonAction action = ButtonAction::Press;
+  ButtonAction action = ButtonAction::press;
   Nanos time{0};  // CLOCK_MONOTONIC: when the debounced level settled, or when the deadline fell
 };
 
@@ -28,7 +28,7 @@ struct ButtonTiming {
 // Debounced buttons. fd() becomes readable when raw edges arrive or a timing deadline passes;
 // the app then calls read(). read() never blocks, throws or allocates.
 class Buttons {
-public:
+ public:
   virtual ~Buttons() = default;
   virtual int fd() const = 0;
   virtual std::size_t count() const = 0;

@@ -9,13 +9,13 @@
 namespace hal {
 
 enum class CameraState : std::uint8_t {
-  Closed,     // never opened or closed on purpose
-  Streaming,  // frames can be read
-  Lost,       // device vanished or failed; reopen is retried periodically
+  closed,     // never opened or closed on purpose
+  streaming,  // frames can be read
+  lost,       // device vanished or failed; reopen is retried periodically
 };
 std::string_view to_string(CameraState s);
 
-enum class PixelFormat : std::uint8_t { Auto, Mjpeg, Yuyv, Rgb24 };
+enum class PixelFormat : std::uint8_t { automatic, mjpeg, yuyv, rgb24 };
 std::string_view to_string(PixelFormat f);
 bool parse_pixel_format(std::string_view text, PixelFormat& out);
 std::string pixel_format_names();  // "auto, mjpeg, yuyv, rgb24"
@@ -24,7 +24,7 @@ struct CameraConfig {
   std::string device;  // a path; /dev/v4l/by-id/... or by-path/... survive re-enumeration
   int width = 1280;
   int height = 720;
-  PixelFormat format = PixelFormat::Auto;  // Auto: MJPEG, then YUYV
+  PixelFormat format = PixelFormat::automatic;  // MJPEG, then YUYV
   int buffers = 4;
   std::chrono::milliseconds reopen_interval{2000};
   // No usable frame for this long while streaming (a wedged camera, or one gone without an error):
@@ -33,7 +33,7 @@ struct CameraConfig {
 };
 
 class Camera {
-public:
+ public:
   virtual ~Camera() = default;
   // Readable when a frame is ready or a deadline (reopen, no-frame check) is due; then call
   // read_frame() and service().

@@ -17,7 +17,7 @@ namespace hal {
 void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int stride, RgbImage& out);
 
 class MjpegDecoder {
-public:
+ public:
   MjpegDecoder();
   ~MjpegDecoder();
   MjpegDecoder(MjpegDecoder&&) noexcept;
@@ -26,7 +26,7 @@ public:
   // The decoder library allocates internally; this wrapper does not.
   bool decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std::string* error);
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -16,7 +16,7 @@ namespace hal {
 class MockButtons;
 class MockCamera;
 
-enum class Backend : std::uint8_t { Linux, Mock };
+enum class Backend : std::uint8_t { linux_kernel, mock };
 bool parse_backend(std::string_view text, Backend& out);
 std::string_view to_string(Backend backend);
 std::vector<std::string> backend_names();  // {"linux", "mock"}, for --hal

@@ -6,12 +6,12 @@
 namespace hal {
 
 struct HalTestOptions {
-  std::string board_file;                            // empty: a built-in mock board
+  std::string board_file;  // empty: a built-in mock board
   // "linux", "mock", or empty: linux when a board file is given (checking a real board is what
   // hal-test is for, and mocks would report every device present), else mock.
   std::string backend;
-  std::string capture_path = "hal-test-capture.png"; // where the captured frame is saved
-  double duration_s = 10.0;                          // how long to listen to buttons and cycle LEDs
+  std::string capture_path = "hal-test-capture.png";  // where the captured frame is saved
+  double duration_s = 10.0;                           // how long to listen to buttons and cycle LEDs
 };
 
 // Prints the backend in use (and why) on the first line, then button events as they come; shows

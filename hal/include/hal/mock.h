@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "base/unique_fd.h"
 #include "hal/buttons.h"
 #include "hal/camera.h"
 #include "hal/status.h"
-#include "base/unique_fd.h"
 
 namespace hal {
 
@@ -34,7 +34,7 @@ struct MockButtonSpec {
 };
 
 class MockButtons final : public Buttons {
-public:
+ public:
   MockButtons(std::vector<MockButtonSpec> buttons, std::vector<ScriptStep> script, const Clock& clock);
   ~MockButtons() override;
   int fd() const override;
@@ -47,14 +47,14 @@ public:
   // tests use it).
   void inject(std::size_t button, bool pressed);
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
 // Records every level change with its time, for tests and for hal-test's printout.
 class RecordingLedSink final : public LedSink {
-public:
+ public:
   struct Change {
     std::size_t led;
     bool on;
@@ -65,7 +65,7 @@ public:
   // Shared so a test can keep reading it after the sink moved into a Status.
   std::shared_ptr<std::vector<Change>> changes = std::make_shared<std::vector<Change>>();
 
-private:
+ private:
   const Clock& clock_;
   std::vector<bool> levels_;
 };
@@ -79,13 +79,13 @@ struct CameraModel {
   // When set, replaces `homography`: the screen's corners (top-left, top-right, bottom-right,
   // bottom-left) in camera pixels, whatever size the displayed frame has.
   std::optional<std::array<std::array<double, 2>, 4>> screen_corners;
-  double blur_sigma = 0.0;      // lens blur, camera pixels
-  double noise_sigma = 0.0;     // additive Gaussian noise, 8-bit levels
-  double exposure = 1.0;        // linear gain
-  double gamma = 1.0;           // output = (exposure * input)^(1/gamma)
-  double vignetting = 0.0;      // brightness falls by this fraction at the image corners
-  std::uint8_t surround = 12;   // what lies around the screen
-  std::uint32_t seed = 1;       // noise is deterministic for a seed
+  double blur_sigma = 0.0;     // lens blur, camera pixels
+  double noise_sigma = 0.0;    // additive Gaussian noise, 8-bit levels
+  double exposure = 1.0;       // linear gain
+  double gamma = 1.0;          // output = (exposure * input)^(1/gamma)
+  double vignetting = 0.0;     // brightness falls by this fraction at the image corners
+  std::uint8_t surround = 12;  // what lies around the screen
+  std::uint32_t seed = 1;      // noise is deterministic for a seed
 };
 
 // A webcam on a stand in front of the screen: slightly off-axis, blurred, noisy, darker at the edges.
@@ -93,12 +93,10 @@ CameraModel typical_camera_model();
 
 // A homography placing a display of the given size in the camera image with its four corners at
 // `corners` (top-left, top-right, bottom-right, bottom-left), camera pixels.
-std::array<double, 9> homography_for_corners(int display_w, int display_h,
-                                             const std::array<std::array<double, 2>, 4>& corners);
+std::array<double, 9> homography_for_corners(int display_w, int display_h, const std::array<std::array<double, 2>, 4>& corners);
 
 // Renders what the camera would capture of `displayed`. `noise_frame` varies the noise per frame.
-void synthesize_capture(const RgbImage& displayed, const CameraModel& model, std::uint32_t noise_frame,
-                        RgbImage& out);
+void synthesize_capture(const RgbImage& displayed, const CameraModel& model, std::uint32_t noise_frame, RgbImage& out);
 
 // A deterministic stand-in for a rendered frame: sky gradient, ground plane, shaded spheres and boxes.
 // `scene` picks the layout and colours, `t` (seconds) moves the objects as playback would.
@@ -108,7 +106,7 @@ RgbImage make_test_scene(int width, int height, int scene, double t);
 // exactly when read_frame() has a frame (or, after unplug()/replug(), when service() has something
 // to do), so a poll loop neither spins nor misses frames.
 class MockCamera final : public Camera {
-public:
+ public:
   static constexpr Nanos kFrameInterval = std::chrono::nanoseconds(1'000'000'000 / 30);  // 30 fps
 
   // Frames cycle through image files (loaded once, at construction); the first is due at once.
@@ -126,7 +124,7 @@ public:
   bool read_frame(RgbImage& out) override;
   void service() override;
 
-private:
+ private:
   bool has_source() const { return !synthetic_ || !displayed_.empty(); }
   void arm(Nanos at);
 
@@ -136,7 +134,7 @@ private:
   bool synthetic_ = false;
   RgbImage displayed_;
   std::uint32_t frame_ = 0;
-  CameraState state_ = CameraState::Streaming;
+  CameraState state_ = CameraState::streaming;
   bool plugged_ = true;
   std::string error_;
   const Clock& clock_;

@@ -33,8 +33,8 @@ struct FiducialLayout {
 void draw_fiducials(RgbImage& frame, const FiducialLayout& layout);
 
 struct SelfCheckOptions {
-  int compare_width = 160;      // luma grid width the comparison runs at; height keeps the aspect
-  int ssim_window = 7;          // SSIM window, grid cells
+  int compare_width = 160;  // luma grid width the comparison runs at; height keeps the aspect
+  int ssim_window = 7;      // SSIM window, grid cells
   // Midway between the worst correct frame (0.96, 1.5 px lens blur) and the best wrong one that
   // still registered (0.66, a different scene of the same layout) in tests/hal/self_check_test.cpp.
   double pass_threshold = 0.8;
@@ -49,7 +49,7 @@ struct SelfCheckResult {
 };
 
 class DisplayChecker {
-public:
+ public:
   explicit DisplayChecker(SelfCheckOptions options = {});
   ~DisplayChecker();
   DisplayChecker(const DisplayChecker&) = delete;
@@ -63,7 +63,7 @@ public:
   // diagnostics when a check fails.
   const RgbImage& last_warped() const;
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

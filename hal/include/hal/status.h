@@ -5,12 +5,12 @@
 #include <string_view>
 #include <vector>
 
-#include "hal/clock.h"
 #include "base/unique_fd.h"
+#include "hal/clock.h"
 
 namespace hal {
 
-enum class LedPattern : std::uint8_t { Off, On, BlinkSlow, BlinkFast, Heartbeat };
+enum class LedPattern : std::uint8_t { off, on, blink_slow, blink_fast, heartbeat };
 std::string_view to_string(LedPattern p);
 bool parse_led_pattern(std::string_view text, LedPattern& out);
 
@@ -24,7 +24,7 @@ Nanos pattern_period(LedPattern p);
 
 // Where LED levels go: GPIO lines on a board, a recording in tests.
 class LedSink {
-public:
+ public:
   virtual ~LedSink() = default;
   virtual void set(std::size_t led, bool on) = 0;
   // The last failure to drive an LED while running, naming it; empty when none.
@@ -41,21 +41,20 @@ struct CheckSummary {
 // What the status file reports.
 struct StatusReport {
   std::string state = "starting";
-  std::string item;                  // what is on screen: the item's scene
-  std::uint64_t frames = 0;          // presented since start
-  double fps = 0.0;                  // over the last second or so
+  std::string item;                               // what is on screen: the item's scene
+  std::uint64_t frames = 0;                       // presented since start
+  double fps = 0.0;                               // over the last second or so
   double frame_ms_p50 = 0.0, frame_ms_p99 = 0.0;  // frame-to-frame times over a recent window
-  std::vector<std::string> errors;   // the recent ones, newest last, each naming its file or device
-  std::vector<std::string> warnings; // conditions that hold now (a camera lost); gone when they clear
-  std::optional<CheckSummary> self_check;  // the last display self-check
+  std::vector<std::string> errors;                // the recent ones, newest last, each naming its file or device
+  std::vector<std::string> warnings;              // conditions that hold now (a camera lost); gone when they clear
+  std::optional<CheckSummary> self_check;         // the last display self-check
 };
 
 // Named LEDs driven by patterns from a timerfd, and the status file.
 class Status {
-public:
+ public:
   // `led_names[i]` is driven through sink->set(i, ...). An empty status_file disables the file.
-  Status(std::vector<std::string> led_names, std::unique_ptr<LedSink> sink, const Clock& clock,
-         std::string status_file);
+  Status(std::vector<std::string> led_names, std::unique_ptr<LedSink> sink, const Clock& clock, std::string status_file);
   ~Status();
   Status(const Status&) = delete;
   Status& operator=(const Status&) = delete;
@@ -78,9 +77,9 @@ public:
   bool write_report(const StatusReport& report, std::string* error);
   const std::string& status_file() const { return file_; }
 
-private:
+ private:
   struct Led {
-    LedPattern pattern = LedPattern::Off;
+    LedPattern pattern = LedPattern::off;
     Nanos since{0};
     bool level = false;
   };

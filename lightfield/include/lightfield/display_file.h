@@ -17,8 +17,8 @@ enum class DisplayType { modules, quilt };
 
 struct Display {
   DisplayType type = DisplayType::modules;
-  ModulesDisplay modules;  // when type is modules
-  QuiltDisplay quilt;      // when type is quilt
+  ModulesDisplay modules;        // when type is modules
+  QuiltDisplay quilt;            // when type is quilt
   std::string calibration_path;  // quilt: the visual.json read, resolved against the display file's folder
   int views() const { return type == DisplayType::modules ? static_cast<int>(modules.module_x.size()) : quilt.views(); }
 };

@@ -18,7 +18,8 @@ bool write_view_exrs(const std::string& prefix, const render::Programs& programs
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      raw[i] = raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(targets.ao_width()) + static_cast<size_t>(x >> shift)].x;
+      raw[i] =
+          raw_low[static_cast<size_t>(y >> shift) * static_cast<size_t>(targets.ao_width()) + static_cast<size_t>(x >> shift)].x;
       blurred[i] = shaded[i].x;
     }
   return write_exr(prefix + "ao_raw.exr", w, h, 1, raw, {"Y"}, error) &&

@@ -1,9 +1,9 @@
 #include "light_field_render.h"
 
+#include "dump.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "gl/session.h"
-#include "dump.h"
 #include "image_io.h"
 #include "platform/platform.h"
 #include "render/light_field.h"
@@ -29,7 +29,9 @@ bool make_folder(const std::string& dir, std::string& error) {
   return !ec;
 }
 
-nlohmann::json vec3_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec3_json(const glm::dvec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 // DIR/module-K/ (modules) or DIR/view-K/ (quilt views): the AO before and after the blur, the world
 // position and normal and the depth of the visible surface, and what the view was.
@@ -39,7 +41,8 @@ bool dump_view(const std::string& dir, int k, const render::View& view, const re
   const std::string base = dir + "/" + (view.module ? "module-" : "view-") + std::to_string(k);
   if (!make_folder(base, error)) return false;
   const int w = targets.settings().width, h = targets.settings().height;
-  const render::WorldSurface surface = view.module ? render::read_module_surface(targets) : render::read_world_surface(targets, view);
+  const render::WorldSurface surface =
+      view.module ? render::read_module_surface(targets) : render::read_world_surface(targets, view);
   if (!write_view_exrs(base + "/", renderer.programs(), targets, surface, error)) return false;
   nlohmann::json doc = {{"index", k}, {"width", w}, {"height", h}};
   if (view.module) {
@@ -83,7 +86,8 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   }
   const bool quilt = display.type == lightfield::DisplayType::quilt;
   if (!options.native_output.empty() && !quilt) {
-    err << "error: --native: " << options.display << " describes optical modules; only a quilt display has a native panel image\n";
+    err << "error: --native: " << options.display
+        << " describes optical modules; only a quilt display has a native panel image\n";
     return 2;
   }
   if (options.view_probe && display.views() > 256) {
@@ -175,7 +179,8 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
 
   const std::string what = quilt ? "views" : "modules";
   out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.display << ": " << output.views() << " "
-      << what << " of " << view_size.x << "x" << view_size.y << ", " << session->platform().name() << " (" << caps.renderer << ")\n";
+      << what << " of " << view_size.x << "x" << view_size.y << ", " << session->platform().name() << " (" << caps.renderer
+      << ")\n";
   const render::SubdivisionReport& split = renderer.subdivision();
   if (split.triangles_after > split.triangles_before || split.capped)
     out << "long edges split for the modules' transform: " << split.triangles_before << " -> " << split.triangles_after
@@ -192,7 +197,8 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
     out << "frame (CPU clock around glFinish), median of " << frame_ms.size() << ": " << std::fixed << std::setprecision(3)
         << median << " ms, " << median / std::max(1, output.rendered_views()) << " ms per rendered view\n";
   }
-  out << "wrote " << options.output << " (" << (quilt ? "quilt" : "montage") << ", " << output_size.x << "x" << output_size.y << ")\n";
+  out << "wrote " << options.output << " (" << (quilt ? "quilt" : "montage") << ", " << output_size.x << "x" << output_size.y
+      << ")\n";
   if (!options.modules_dir.empty()) out << "wrote " << output.views() << " images to " << options.modules_dir << "\n";
   if (!options.native_output.empty())
     out << "wrote " << options.native_output << " (native panel image, " << output.native_size().x << "x"

@@ -1,11 +1,11 @@
 #pragma once
 // Reads scenes and playlists on a thread of its own, so parsing, validating and decoding images
 // never holds up a frame. Results come back through a queue; fd() (an eventfd) wakes the loop.
+#include "base/unique_fd.h"
 #include "lightfield/display_file.h"
 #include "playback/playlist.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
-#include "base/unique_fd.h"
 
 #include <condition_variable>
 #include <cstdint>
@@ -19,9 +19,13 @@
 namespace app {
 
 // The loader's key for a playlist item: its scene, and its display when it has one.
-inline std::string load_key(const playback::Item& item) { return item.display.empty() ? item.scene : item.scene + "\n" + item.display; }
+inline std::string load_key(const playback::Item& item) {
+  return item.display.empty() ? item.scene : item.scene + "\n" + item.display;
+}
 // The scene spec and the display path of a key.
-inline std::string scene_of(const std::string& key) { return key.substr(0, key.find('\n')); }
+inline std::string scene_of(const std::string& key) {
+  return key.substr(0, key.find('\n'));
+}
 inline std::string display_of(const std::string& key) {
   const size_t at = key.find('\n');
   return at == std::string::npos ? std::string() : key.substr(at + 1);
@@ -35,7 +39,7 @@ class Loader {
     std::shared_ptr<const scene::Scene> scene;
     std::shared_ptr<const lightfield::Display> display;  // when the key names one
     std::shared_ptr<const playback::Playlist> playlist;
-    std::string error;  // empty on success
+    std::string error;                  // empty on success
     std::vector<std::string> warnings;  // "spec: what" for what loaded anyway (a texture drawn white)
   };
 

@@ -12,6 +12,7 @@
 #include "hal/board.h"
 #include "hal/devices.h"
 #include "loader.h"
+#include "platform/platform.h"
 #include "play/event_sources.h"
 #include "play/frame_drawer.h"
 #include "play/gpu_recovery.h"
@@ -21,7 +22,6 @@
 #include "play/scene_cache.h"
 #include "play/self_check_session.h"
 #include "play/status_reporter.h"
-#include "platform/platform.h"
 #include "render/renderer.h"
 
 #include <filesystem>
@@ -34,25 +34,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool is_playlist(const std::string& path) { return fs::path(path).extension() == ".toml"; }
+bool is_playlist(const std::string& path) {
+  return fs::path(path).extension() == ".toml";
+}
 
 // The board file (or the built-in mock board) and its devices on the backend the options choose.
 bool open_board(const PlayOptions& options, const hal::Clock& clock, hal::BoardConfig& board, hal::Devices& devices,
                 std::ostream& err) {
-  hal::Backend backend = hal::Backend::Mock;
+  hal::Backend backend = hal::Backend::mock;
   if (!options.hal.empty()) {
     if (!hal::parse_backend(options.hal, backend)) {
       err << "error: --hal: expected linux or mock, got '" << options.hal << "'\n";
       return false;
     }
   } else if (!options.board_file.empty()) {
-    backend = hal::Backend::Linux;
+    backend = hal::Backend::linux_kernel;
   }
   try {
     board = options.board_file.empty() ? hal::builtin_mock_board() : hal::load_board(options.board_file);
     if (!options.buttons_script.empty()) board.mock_button_script = options.buttons_script;
     if (!options.status_file.empty()) board.status_file = options.status_file;
-    if (backend == hal::Backend::Linux && !options.buttons_script.empty()) {
+    if (backend == hal::Backend::linux_kernel && !options.buttons_script.empty()) {
       err << "error: --buttons-script drives mock buttons; add --hal mock\n";
       return false;
     }
@@ -65,7 +67,8 @@ bool open_board(const PlayOptions& options, const hal::Clock& clock, hal::BoardC
 }
 
 // --camera-script, for the mock camera.
-bool load_camera_script(const PlayOptions& options, const hal::Devices& devices, std::vector<CameraStep>& steps, std::ostream& err) {
+bool load_camera_script(const PlayOptions& options, const hal::Devices& devices, std::vector<CameraStep>& steps,
+                        std::ostream& err) {
   if (options.camera_script.empty()) return true;
   if (devices.mock_camera == nullptr) {
     err << "error: --camera-script drives the mock camera: add --hal mock and a board with a camera\n";
@@ -127,7 +130,8 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   const std::string platform_name =
       options.platform == "auto" ? std::string(platform::choose_auto(platform_why)) : options.platform;
   const platform::Capabilities capabilities = platform::capabilities(platform_name);
-  PlayClock clock(options.fps <= 0.0 && !capabilities.shows_frames_on_a_display, resume.start, resume.wall_start, resume.manual_now);
+  PlayClock clock(options.fps <= 0.0 && !capabilities.shows_frames_on_a_display, resume.start, resume.wall_start,
+                  resume.manual_now);
 
   hal::BoardConfig board;
   hal::Devices devices;
@@ -144,7 +148,7 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   if (!watch.open(error)) status.report(error);
   if (!signals_open) return 1;
   if (!status.service().error().empty()) status.report(status.service().error());
-  status.announce_state();  // `systemctl status` says starting while the shaders compile
+  status.announce_state();                     // `systemctl status` says starting while the shaders compile
   status.set_leds(!devices.problems.empty());  // nothing else can warn yet
 
   playback::ParseOptions parse_options;
@@ -187,8 +191,9 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   SceneCache scenes(loader, caps, status, err);
   SelfCheckSession check(devices.camera.get(), devices.mock_camera, std::move(camera_script), board.self_check_interval_s,
                          clock.devices(), status, kiosk);
-  PlayLoop loop({options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes, check},
-                std::move(playlist_path), std::move(playlist), resume.frames);
+  PlayLoop loop(
+      {options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes, check},
+      std::move(playlist_path), std::move(playlist), resume.frames);
   const int code = loop.run();
   next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames()};
   remake_reason = loop.remake_reason();
@@ -198,9 +203,9 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
 }  // namespace
 
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
-  return play_with_recovery(
-      [&](const Resume& resume, Resume& next, std::string& reason) { return play_session(options, out, err, resume, next, reason); },
-      out, err);
+  return play_with_recovery([&](const Resume& resume, Resume& next,
+                                std::string& reason) { return play_session(options, out, err, resume, next, reason); },
+                            out, err);
 }
 
 }  // namespace app

@@ -1,9 +1,9 @@
 #include "app/render_command.h"
 
+#include "dump.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "gl/session.h"
-#include "dump.h"
 #include "image_io.h"
 #include "light_field_render.h"
 #include "platform/platform.h"
@@ -83,8 +83,9 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
         {"frames_averaged", renderer.ao_frames_averaged()}}},
       {"files",
        {{"ao_raw.exr", "the last frame's own AO, before temporal accumulation and blur, [0,1], 0 on background"},
-        {"ao_blurred.exr", "the AO the frame was shaded with: the average over ao.frames_averaged frames (samples "
-                           "turned anew each frame), then blurred when blur is on"},
+        {"ao_blurred.exr",
+         "the AO the frame was shaded with: the average over ao.frames_averaged frames (samples "
+         "turned anew each frame), then blurred when blur is on"},
         {"position.exr", "world-space position of the visible surface; A = 1 on objects, 0 on background"},
         {"normal.exr", "world-space unit normal; A as above"},
         {"depth.exr", "linear view depth (distance along the view axis), 0 on background"}}}};
@@ -111,7 +112,10 @@ scene::Framing framing_of(const playback::Camera& camera) {
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.display.empty()) return run_render_light_field(options, out, err);
   if (!options.modules_dir.empty() || !options.native_output.empty() || options.view_probe) {
-    err << "error: " << (!options.modules_dir.empty() ? "--modules-dir" : !options.native_output.empty() ? "--native" : "--view-probe")
+    err << "error: "
+        << (!options.modules_dir.empty()     ? "--modules-dir"
+            : !options.native_output.empty() ? "--native"
+                                             : "--view-probe")
         << ": needs --display FILE (a light field display)\n";
     return 2;
   }
@@ -150,8 +154,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   path.distance = options.framing.distance;
   path.fov_deg = options.framing.fov_y_deg;
   playback::Timeline timeline(std::move(playlist), 0.0, 0.0);
-  const scene::Camera camera = scene::frame(scene.bounds, framing_of(timeline.at(0.0, 0.0).camera), options.frame.width,
-                                            options.frame.height);
+  const scene::Camera camera =
+      scene::frame(scene.bounds, framing_of(timeline.at(0.0, 0.0).camera), options.frame.width, options.frame.height);
 
   const int frames = std::max(1, options.frames);
   std::vector<render::PassTimes> times;
@@ -180,9 +184,9 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   // The first frame pays for shader compilation and first-touch allocation; with more than one
   // frame it is left out of the median.
   const size_t first = times.size() > 1 ? 1 : 0;
-  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.frame.width << "x"
-      << options.frame.height << ", " << platform.name() << " (" << caps.renderer << "), loaded in " << std::fixed
-      << std::setprecision(1) << load_ms << " ms\n";
+  out << scene.name << ": " << scene.triangle_count() << " triangles, " << options.frame.width << "x" << options.frame.height
+      << ", " << platform.name() << " (" << caps.renderer << "), loaded in " << std::fixed << std::setprecision(1) << load_ms
+      << " ms\n";
   out << (times.front().gpu_timed ? "GPU time per pass" : "time per pass (CPU clock around glFinish; no timer queries)")
       << ", median of " << times.size() - first << " frame(s):\n";
   double total = 0.0;
@@ -192,11 +196,11 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     std::sort(samples.begin(), samples.end());
     const double median = samples[samples.size() / 2];
     if (median < 0.0) {
-      out << "  " << std::left << std::setw(16) << render::pass_name(pass) << "   skipped\n";
+      out << "  " << std::left << std::setw(16) << render::pass_name(static_cast<render::Pass>(pass)) << "   skipped\n";
       continue;
     }
     total += median;
-    out << "  " << std::left << std::setw(16) << render::pass_name(pass) << std::right << std::setw(9)
+    out << "  " << std::left << std::setw(16) << render::pass_name(static_cast<render::Pass>(pass)) << std::right << std::setw(9)
         << std::setprecision(3) << median << " ms\n";
   }
   out << "  " << std::left << std::setw(16) << "total" << std::right << std::setw(9) << total << " ms\n";
@@ -208,9 +212,11 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
       out << "depth prepass: auto needs two frames to choose (--frames 3 or more)\n";
   }
   if (renderer.ao_frames_averaged() > 1)
-    out << "AO averaged over " << renderer.ao_frames_averaged() << " frames (temporal accumulation; --temporal off for one frame's)\n";
+    out << "AO averaged over " << renderer.ao_frames_averaged()
+        << " frames (temporal accumulation; --temporal off for one frame's)\n";
   if (reused > 0)
-    out << "AO reused on " << reused << " of " << frames << " frames (camera still, history full; --reuse-ao off to time every frame)\n";
+    out << "AO reused on " << reused << " of " << frames
+        << " frames (camera still, history full; --reuse-ao off to time every frame)\n";
   if (!options.output.empty()) out << "wrote " << options.output << "\n";
   if (!options.dump_dir.empty()) out << "dumped AO, position, normal, depth and camera.json to " << options.dump_dir << "\n";
   return 0;

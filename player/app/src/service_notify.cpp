@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <cstdint>
-#include <cstddef>
 
 #include <unistd.h>
 
@@ -57,8 +57,8 @@ ServiceNotifier::~ServiceNotifier() {
 bool ServiceNotifier::send(const char* message, std::size_t length) {
   // Addressed on every send rather than connected once: a manager that re-creates its socket
   // (daemon-reexec) is still reached. MSG_DONTWAIT: a full queue drops the message, never the frame.
-  const ssize_t sent = sendto(fd_, message, length, MSG_DONTWAIT | MSG_NOSIGNAL,
-                              reinterpret_cast<const sockaddr*>(&address_), address_length_);
+  const ssize_t sent =
+      sendto(fd_, message, length, MSG_DONTWAIT | MSG_NOSIGNAL, reinterpret_cast<const sockaddr*>(&address_), address_length_);
   return sent == static_cast<ssize_t>(length);
 }
 

@@ -25,9 +25,9 @@ class ServiceNotifier {
   using Nanos = std::chrono::nanoseconds;
 
   struct Config {
-    std::string socket;      // NOTIFY_SOCKET: a path, or '@' and an abstract name; empty: not a service
-    Nanos watchdog{0};       // WatchdogSec as systemd passes it (WATCHDOG_USEC); 0: no watchdog
-    std::string problem;     // a malformed variable, named with what was expected; empty: none
+    std::string socket;   // NOTIFY_SOCKET: a path, or '@' and an abstract name; empty: not a service
+    Nanos watchdog{0};    // WatchdogSec as systemd passes it (WATCHDOG_USEC); 0: no watchdog
+    std::string problem;  // a malformed variable, named with what was expected; empty: none
   };
   // NOTIFY_SOCKET, and the watchdog interval from sd_watchdog_enabled() (WATCHDOG_USEC, when
   // WATCHDOG_PID is unset or this process). Read once: the player does not re-read its environment.

@@ -14,8 +14,7 @@ std::string string_of(GLenum name) {
   return value ? reinterpret_cast<const char*>(value) : "";
 }
 
-void GL_APIENTRY log_debug_message(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
-                                   const GLchar* message, const void*) {
+void GL_APIENTRY log_debug_message(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message, const void*) {
   if (severity == GL_DEBUG_SEVERITY_NOTIFICATION_KHR) return;
   std::fprintf(stderr, "gl debug [type 0x%x, id %u, severity 0x%x]: %s\n", type, id, severity, message);
 }
@@ -31,10 +30,13 @@ std::vector<std::pair<std::string, bool>> Caps::extensions_used() const {
   if (desktop_gl) {
     used = {{"GL_ARB_ES3_1_compatibility", has("GL_ARB_ES3_1_compatibility")},
             {"GL_ARB_timer_query", timer_query},
-            {"GL_KHR_debug", debug_output}, {"GL_KHR_robustness", reset_notification}};
+            {"GL_KHR_debug", debug_output},
+            {"GL_KHR_robustness", reset_notification}};
   } else {
-    used = {{"GL_EXT_disjoint_timer_query", timer_query}, {"GL_KHR_debug", debug_output},
-            {has("GL_EXT_robustness") && !has("GL_KHR_robustness") ? "GL_EXT_robustness" : "GL_KHR_robustness", reset_notification}};
+    used = {
+        {"GL_EXT_disjoint_timer_query", timer_query},
+        {"GL_KHR_debug", debug_output},
+        {has("GL_EXT_robustness") && !has("GL_KHR_robustness") ? "GL_EXT_robustness" : "GL_KHR_robustness", reset_notification}};
   }
   return used;
 }

@@ -37,7 +37,9 @@ void FrameTimer::mark(int pass) {
   stamp(slot, slot.marks);
 }
 
-void FrameTimer::end_frame() { ring_[static_cast<size_t>(current_)].pending = timed(); }
+void FrameTimer::end_frame() {
+  ring_[static_cast<size_t>(current_)].pending = timed();
+}
 
 bool FrameTimer::read(Slot& slot, bool wait, Times& out) {
   if (!slot.pending) return false;

@@ -34,9 +34,8 @@ Shader compile(const Stage& stage, const std::string& defines, std::string& erro
   GLint ok = GL_FALSE;
   api.GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    error = "gles_shaders/" + std::string(stage.file) + " (variant: " +
-            (defines.empty() ? std::string("default") : defines) + ") failed to compile:\n" +
-            info_log(shader.id(), false);
+    error = "gles_shaders/" + std::string(stage.file) + " (variant: " + (defines.empty() ? std::string("default") : defines) +
+            ") failed to compile:\n" + info_log(shader.id(), false);
     return {};
   }
   return shader;

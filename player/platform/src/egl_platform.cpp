@@ -20,7 +20,11 @@ class EglPlatform final : public Platform {
  public:
   EglPlatform(EGLDisplay display, EGLConfig config, EGLContext context, bool colorspace, std::string how,
               std::vector<std::string> used)
-      : display_(display), config_(config), context_(context), colorspace_(colorspace), how_(std::move(how)),
+      : display_(display),
+        config_(config),
+        context_(context),
+        colorspace_(colorspace),
+        how_(std::move(how)),
         used_(std::move(used)) {}
   // The display is not terminated: an EGLDisplay is one per device and process, shared by every
   // Platform made on it, so terminating it here would pull it from under another. (Mesa also unloads
@@ -44,8 +48,8 @@ class EglPlatform final : public Platform {
     EGLSurface surface = EGL_NO_SURFACE;
     bool srgb = false;
     if (colorspace_) {
-      const EGLint attributes[] = {EGL_WIDTH, size.width, EGL_HEIGHT, size.height, EGL_GL_COLORSPACE_KHR,
-                                   EGL_GL_COLORSPACE_SRGB_KHR, EGL_NONE};
+      const EGLint attributes[] = {
+          EGL_WIDTH, size.width, EGL_HEIGHT, size.height, EGL_GL_COLORSPACE_KHR, EGL_GL_COLORSPACE_SRGB_KHR, EGL_NONE};
       surface = eglCreatePbufferSurface(display_, config_, attributes);
       srgb = surface != EGL_NO_SURFACE;
     }
@@ -94,8 +98,19 @@ Made make_context(EGLDisplay display, bool debug, std::string& why) {
   if (!egl::initialize(display, major, minor, why)) return made;
   const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
   EGLConfig config = nullptr;
-  const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT_KHR, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                           EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_NONE};
+  const EGLint wanted[] = {EGL_RENDERABLE_TYPE,
+                           EGL_OPENGL_ES3_BIT_KHR,
+                           EGL_SURFACE_TYPE,
+                           EGL_PBUFFER_BIT,
+                           EGL_RED_SIZE,
+                           8,
+                           EGL_GREEN_SIZE,
+                           8,
+                           EGL_BLUE_SIZE,
+                           8,
+                           EGL_ALPHA_SIZE,
+                           8,
+                           EGL_NONE};
   EGLint count = 0;
   if (!eglChooseConfig(display, wanted, &config, 1, &count) || count < 1) {
     why = "no EGL config renders OpenGL ES 3 into an RGBA8 pbuffer";
@@ -113,8 +128,8 @@ Made make_context(EGLDisplay display, bool debug, std::string& why) {
 std::unique_ptr<Platform> finish(EGLDisplay display, const Made& made, std::string how, std::vector<std::string> used,
                                  const Options& options, std::string& error) {
   if (made.colorspace) used.push_back("EGL_KHR_gl_colorspace");
-  auto platform = std::make_unique<EglPlatform>(display, made.config, made.context, made.colorspace, std::move(how),
-                                                std::move(used));
+  auto platform =
+      std::make_unique<EglPlatform>(display, made.config, made.context, made.colorspace, std::move(how), std::move(used));
   if (!platform->resize(options.size, error)) return nullptr;  // the Platform's destructor releases the context
   return platform;
 }
@@ -128,15 +143,13 @@ std::unique_ptr<Platform> create_egl(const Options& options, std::string& error)
     error = "egl: the EGL library lacks EGL_EXT_platform_base, so no headless display can be opened";
     return nullptr;
   }
-  auto get_platform_display =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   std::string attempts;
 
   // A real GPU (the NVIDIA driver exposes devices, not a surfaceless platform).
   if (has_extension(client, "EGL_EXT_platform_device") && has_extension(client, "EGL_EXT_device_enumeration")) {
     auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    auto query_device_string =
-        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+    auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
     EGLDeviceEXT devices[16];
     EGLint count = 0;
     if (query_devices && query_devices(16, devices, &count)) {

@@ -16,8 +16,8 @@ namespace platform::kms {
 namespace {
 
 struct Properties {
-  std::uint32_t connector_crtc = 0, crtc_mode = 0, crtc_active = 0, plane_fb = 0, plane_crtc = 0, src_x = 0, src_y = 0,
-                src_w = 0, src_h = 0, crtc_x = 0, crtc_y = 0, crtc_w = 0, crtc_h = 0;
+  std::uint32_t connector_crtc = 0, crtc_mode = 0, crtc_active = 0, plane_fb = 0, plane_crtc = 0, src_x = 0, src_y = 0, src_w = 0,
+                src_h = 0, crtc_x = 0, crtc_y = 0, crtc_w = 0, crtc_h = 0;
 };
 
 // Every property a modeset sets; false where the driver lacks one.
@@ -97,12 +97,14 @@ Commit::Prepared AtomicCommit::prepare(const Target& target, std::string& error)
       if (id == plane) continue;
       PlanePtr other(drmModeGetPlane(fd_, id));
       if (other && other->crtc_id == target.crtc)
-        others.push_back({id, property_id(fd_, id, DRM_MODE_OBJECT_PLANE, "FB_ID"), property_id(fd_, id, DRM_MODE_OBJECT_PLANE, "CRTC_ID")});
+        others.push_back(
+            {id, property_id(fd_, id, DRM_MODE_OBJECT_PLANE, "FB_ID"), property_id(fd_, id, DRM_MODE_OBJECT_PLANE, "CRTC_ID")});
     }
   }
   std::uint32_t blob = 0;
   if (drmModeCreatePropertyBlob(fd_, &target.mode, sizeof target.mode, &blob) != 0) {
-    error = "kms: the mode " + describe(to_mode(target.mode)) + " could not be made a property blob (" + base::errno_text(errno) + ")";
+    error = "kms: the mode " + describe(to_mode(target.mode)) + " could not be made a property blob (" + base::errno_text(errno) +
+            ")";
     return Prepared::failed;
   }
   if (mode_blob_ != 0) drmModeDestroyPropertyBlob(fd_, mode_blob_);
@@ -137,9 +139,11 @@ bool AtomicCommit::modeset(std::uint32_t fb, int& error_code) {
   add(target_.crtc, props_.crtc_active, 1);
   const std::uint64_t w = target_.mode.hdisplay, h = target_.mode.vdisplay;
   // The whole framebuffer (source in 16.16 fixed point) onto the whole CRTC.
-  const std::pair<std::uint32_t, std::uint64_t> plane_values[] = {
-      {props_.plane_fb, fb}, {props_.plane_crtc, target_.crtc}, {props_.src_x, 0},  {props_.src_y, 0},  {props_.src_w, w << 16},
-      {props_.src_h, h << 16}, {props_.crtc_x, 0},             {props_.crtc_y, 0}, {props_.crtc_w, w}, {props_.crtc_h, h}};
+  const std::pair<std::uint32_t, std::uint64_t> plane_values[] = {{props_.plane_fb, fb},   {props_.plane_crtc, target_.crtc},
+                                                                  {props_.src_x, 0},       {props_.src_y, 0},
+                                                                  {props_.src_w, w << 16}, {props_.src_h, h << 16},
+                                                                  {props_.crtc_x, 0},      {props_.crtc_y, 0},
+                                                                  {props_.crtc_w, w},      {props_.crtc_h, h}};
   for (const auto& [property, value] : plane_values) add(plane_, property, value);
   const int result = drmModeAtomicCommit(fd_, request, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr);
   error_code = result == 0 ? 0 : errno;
@@ -172,6 +176,8 @@ bool AtomicCommit::flip(std::uint32_t fb, std::uint64_t sequence, int& error_cod
 
 }  // namespace
 
-std::unique_ptr<Commit> make_atomic_commit(int fd) { return std::make_unique<AtomicCommit>(fd); }
+std::unique_ptr<Commit> make_atomic_commit(int fd) {
+  return std::make_unique<AtomicCommit>(fd);
+}
 
 }  // namespace platform::kms

@@ -155,7 +155,9 @@ std::vector<std::string> primary_nodes() {
   return nodes;
 }
 
-base::UniqueFd open_node(const std::string& path) { return base::UniqueFd(open(path.c_str(), O_RDWR | O_CLOEXEC)); }
+base::UniqueFd open_node(const std::string& path) {
+  return base::UniqueFd(open(path.c_str(), O_RDWR | O_CLOEXEC));
+}
 
 bool open_device(const std::string& wanted, base::UniqueFd& fd, std::string& path, std::string& error) {
   if (!wanted.empty()) {
@@ -223,8 +225,10 @@ bool find_kms_device(std::string& path) {
 
 bool describe_kms_outputs(const Options& options, std::string& text, std::string& error) {
   std::vector<std::string> nodes;
-  if (!options.drm_device.empty()) nodes.push_back(options.drm_device);
-  else nodes = kms::primary_nodes();
+  if (!options.drm_device.empty())
+    nodes.push_back(options.drm_device);
+  else
+    nodes = kms::primary_nodes();
   if (nodes.empty()) {
     error = "kms: no DRM device (no /dev/dri/card*)";
     return false;

@@ -42,10 +42,15 @@ void KmsPlatform::reprobe() {
   writeback_ = found.writeback;
   const Choice choice = choose_output(found.connectors, wanted_connector_, wanted_mode_);
   switch (choice.outcome) {
-    case Choice::Outcome::chosen: break;
-    case Choice::Outcome::no_such_mode: warn("kms: " + choice.why); [[fallthrough]];
+    case Choice::Outcome::chosen:
+      break;
+    case Choice::Outcome::no_such_mode:
+      warn("kms: " + choice.why);
+      [[fallthrough]];
     case Choice::Outcome::waiting:
-    case Choice::Outcome::no_such_connector: stop_presenting(choice.why, false); return;
+    case Choice::Outcome::no_such_connector:
+      stop_presenting(choice.why, false);
+      return;
   }
   const auto index = static_cast<size_t>(choice.connector);
   const drmModeModeInfo& raw = found.raw_modes[index][static_cast<size_t>(choice.mode)];
@@ -119,7 +124,8 @@ std::size_t KmsPlatform::drain_events(std::span<Event> out) {
   }
   const std::size_t n = std::min(queued_, out.size());
   std::copy_n(queue_.begin(), n, out.begin());
-  std::copy(queue_.begin() + static_cast<std::ptrdiff_t>(n), queue_.begin() + static_cast<std::ptrdiff_t>(queued_), queue_.begin());
+  std::copy(queue_.begin() + static_cast<std::ptrdiff_t>(n), queue_.begin() + static_cast<std::ptrdiff_t>(queued_),
+            queue_.begin());
   queued_ -= n;
   return n;
 }

@@ -51,6 +51,8 @@ class LegacyCommit final : public Commit {
 
 }  // namespace
 
-std::unique_ptr<Commit> make_legacy_commit(int fd, std::uint32_t driven_crtc) { return std::make_unique<LegacyCommit>(fd, driven_crtc); }
+std::unique_ptr<Commit> make_legacy_commit(int fd, std::uint32_t driven_crtc) {
+  return std::make_unique<LegacyCommit>(fd, driven_crtc);
+}
 
 }  // namespace platform::kms

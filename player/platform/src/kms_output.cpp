@@ -12,14 +12,17 @@ namespace {
 
 // The kinds a word names; a size is WxH[@R].
 constexpr base::Name<ModeRequest::Kind> kModeKindNames[] = {{ModeRequest::Kind::preferred, "preferred"},
-                                                           {ModeRequest::Kind::highest, "highest"}};
+                                                            {ModeRequest::Kind::highest, "highest"}};
 static_assert(base::in_enum_order(kModeKindNames));
 
-constexpr base::Name<ConnectorState> kConnectorStateNames[] = {
-    {ConnectorState::connected, "connected"}, {ConnectorState::disconnected, "disconnected"}, {ConnectorState::unknown, "unknown"}};
+constexpr base::Name<ConnectorState> kConnectorStateNames[] = {{ConnectorState::connected, "connected"},
+                                                               {ConnectorState::disconnected, "disconnected"},
+                                                               {ConnectorState::unknown, "unknown"}};
 static_assert(base::in_enum_order(kConnectorStateNames));
 
-bool parse_hz(std::string_view text, double& out) { return base::parse_number(text, out) && out > 0.0 && out < 1000.0; }
+bool parse_hz(std::string_view text, double& out) {
+  return base::parse_number(text, out) && out > 0.0 && out < 1000.0;
+}
 
 std::string modes_text(const Connector& connector) {
   if (connector.modes.empty()) return "no modes";
@@ -60,7 +63,9 @@ std::string to_string(const ModeRequest& request) {
   return text;
 }
 
-std::string_view to_string(ConnectorState state) { return base::name_of(kConnectorStateNames, state); }
+std::string_view to_string(ConnectorState state) {
+  return base::name_of(kConnectorStateNames, state);
+}
 
 std::string describe(const Mode& mode) {
   char text[64];
@@ -127,17 +132,21 @@ int choose_mode(const Connector& connector, const ModeRequest& request, std::str
   // The kernel lists the preferred mode first where the display names none; so does mpv.
   if (best < 0 && request.kind == ModeRequest::Kind::preferred && !connector.modes.empty()) best = 0;
   if (best < 0)
-    error = "--drm-mode: " + connector.name + " offers no mode " + to_string(request) + " (it offers " + modes_text(connector) + ")";
+    error =
+        "--drm-mode: " + connector.name + " offers no mode " + to_string(request) + " (it offers " + modes_text(connector) + ")";
   return best;
 }
 
-Choice choose_output(const std::vector<Connector>& connectors, std::string_view wanted_connector, const ModeRequest& wanted_mode) {
+Choice choose_output(const std::vector<Connector>& connectors, std::string_view wanted_connector,
+                     const ModeRequest& wanted_mode) {
   Choice choice;
   bool waiting = false;
   choice.connector = choose_connector(connectors, wanted_connector, waiting, choice.why);
   if (choice.connector < 0) {
     choice.outcome = waiting ? Choice::Outcome::waiting : Choice::Outcome::no_such_connector;
-    if (waiting) choice.why = wanted_connector == "auto" ? "no display connected" : "no display connected to " + std::string(wanted_connector);
+    if (waiting)
+      choice.why =
+          wanted_connector == "auto" ? "no display connected" : "no display connected to " + std::string(wanted_connector);
     return choice;
   }
   choice.mode = choose_mode(connectors[static_cast<size_t>(choice.connector)], wanted_mode, choice.why);

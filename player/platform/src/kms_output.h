@@ -40,8 +40,7 @@ std::string describe(const Mode& mode);
 // --drm-connector NAME or "auto" (the first connected one). Returns the index into `connectors`,
 // or -1: `waiting` true when the wanted connector exists but nothing is connected (a display may
 // come), false with `error` set when the name matches nothing.
-int choose_connector(const std::vector<Connector>& connectors, std::string_view wanted, bool& waiting,
-                     std::string& error);
+int choose_connector(const std::vector<Connector>& connectors, std::string_view wanted, bool& waiting, std::string& error);
 // The mode of `connector` the request names, or -1 with `error` listing what it offers.
 int choose_mode(const Connector& connector, const ModeRequest& request, std::string& error);
 

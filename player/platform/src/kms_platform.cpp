@@ -65,7 +65,8 @@ std::unique_ptr<Platform> KmsPlatform::create(const Options& options, std::strin
   const bool chosen = choice.outcome == Choice::Outcome::chosen;
   // Without a display the context still needs a surface to be current on; it is replaced by one of
   // the mode's size when a display comes.
-  const Mode* mode = chosen ? &found.connectors[static_cast<size_t>(choice.connector)].modes[static_cast<size_t>(choice.mode)] : nullptr;
+  const Mode* mode =
+      chosen ? &found.connectors[static_cast<size_t>(choice.connector)].modes[static_cast<size_t>(choice.mode)] : nullptr;
   if (!self.make_surface(mode != nullptr ? Size{mode->width, mode->height} : options.size, error)) return nullptr;
   if (chosen) {
     if (!self.set_up_output(found, choice, error)) return nullptr;
@@ -75,19 +76,24 @@ std::unique_ptr<Platform> KmsPlatform::create(const Options& options, std::strin
   }
   self.uevent_fd_.reset(uevent::open_socket());
   if (!self.uevent_fd_)
-    self.warn("kms: no hotplug events (netlink uevent socket: " + base::errno_text(errno) + "); displays are looked for every second");
+    self.warn("kms: no hotplug events (netlink uevent socket: " + base::errno_text(errno) +
+              "); displays are looked for every second");
   return platform;
 }
 
 std::string KmsPlatform::description() const {
   std::string text = "DRM/KMS on " + device_path_ + " (" + driver_ + "), " + std::string(commit_->kind().modesetting) +
                      " modesetting, " + surface_->format_name();
-  if (presenting_) text += ", " + connector_.name + " " + describe(mode_);
-  else text += ", " + reason_;
+  if (presenting_)
+    text += ", " + connector_.name + " " + describe(mode_);
+  else
+    text += ", " + reason_;
   return text;
 }
 
-void* KmsPlatform::proc_address(const char* name) const { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+void* KmsPlatform::proc_address(const char* name) const {
+  return reinterpret_cast<void*>(eglGetProcAddress(name));
+}
 
 bool KmsPlatform::resize(Size size, std::string& error) {
   const Size current = surface_->size();
@@ -232,7 +238,8 @@ void KmsPlatform::commit_failed(bool setting_mode, int code) {
   const std::string what = std::string(setting_mode ? kind.modeset : kind.flip) + connector_.name + " " + describe(mode_) +
                            " failed (" + base::errno_text(code) + ")";
   warn("kms: " + what);
-  stop_presenting(std::string(setting_mode ? "the display refused the mode: " : "the display refused a page flip: ") + what, true);
+  stop_presenting(std::string(setting_mode ? "the display refused the mode: " : "the display refused a page flip: ") + what,
+                  true);
 }
 
 bool KmsPlatform::capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, std::string& error) {
@@ -283,6 +290,8 @@ void KmsPlatform::warn(std::string text) {
 
 }  // namespace kms
 
-std::unique_ptr<Platform> create_kms(const Options& options, std::string& error) { return kms::KmsPlatform::create(options, error); }
+std::unique_ptr<Platform> create_kms(const Options& options, std::string& error) {
+  return kms::KmsPlatform::create(options, error);
+}
 
 }  // namespace platform

@@ -32,8 +32,17 @@ void destroy_fb(gbm_bo* bo, void* data) {
 
 // A window config whose native visual is the scanout format: XRGB8888, else ARGB8888.
 bool choose_config(EGLDisplay display, EGLConfig& config, std::uint32_t& format) {
-  const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT_KHR, EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RED_SIZE, 8,
-                           EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+  const EGLint wanted[] = {EGL_RENDERABLE_TYPE,
+                           EGL_OPENGL_ES3_BIT_KHR,
+                           EGL_SURFACE_TYPE,
+                           EGL_WINDOW_BIT,
+                           EGL_RED_SIZE,
+                           8,
+                           EGL_GREEN_SIZE,
+                           8,
+                           EGL_BLUE_SIZE,
+                           8,
+                           EGL_NONE};
   EGLint count = 0;
   eglChooseConfig(display, wanted, nullptr, 0, &count);
   std::vector<EGLConfig> configs(static_cast<size_t>(std::max(count, 0)));
@@ -41,7 +50,8 @@ bool choose_config(EGLDisplay display, EGLConfig& config, std::uint32_t& format)
   for (std::uint32_t scanout : {GBM_FORMAT_XRGB8888, GBM_FORMAT_ARGB8888})
     for (EGLConfig candidate : configs) {
       EGLint visual = 0;
-      if (eglGetConfigAttrib(display, candidate, EGL_NATIVE_VISUAL_ID, &visual) && static_cast<std::uint32_t>(visual) == scanout) {
+      if (eglGetConfigAttrib(display, candidate, EGL_NATIVE_VISUAL_ID, &visual) &&
+          static_cast<std::uint32_t>(visual) == scanout) {
         config = candidate;
         format = scanout;
         return true;
@@ -157,8 +167,8 @@ std::uint32_t Surface::framebuffer_for(gbm_bo* bo, std::string& error) {
   const std::uint32_t width = gbm_bo_get_width(bo), height = gbm_bo_get_height(bo), format = gbm_bo_get_format(bo);
   const bool with_modifier = modifiers_ && modifier != DRM_FORMAT_MOD_INVALID;
   std::uint32_t fb = 0;
-  const int result = with_modifier ? drmModeAddFB2WithModifiers(fd_, width, height, format, handles, strides, offsets, modifiers, &fb,
-                                                                DRM_MODE_FB_MODIFIERS)
+  const int result = with_modifier ? drmModeAddFB2WithModifiers(fd_, width, height, format, handles, strides, offsets, modifiers,
+                                                                &fb, DRM_MODE_FB_MODIFIERS)
                                    : drmModeAddFB2(fd_, width, height, format, handles, strides, offsets, &fb, 0);
   if (result != 0) {
     char fourcc[5] = {static_cast<char>(format), static_cast<char>(format >> 8), static_cast<char>(format >> 16),
@@ -167,15 +177,17 @@ std::uint32_t Surface::framebuffer_for(gbm_bo* bo, std::string& error) {
     std::snprintf(modifier_text, sizeof modifier_text, "0x%016llx", static_cast<unsigned long long>(modifier));
     error = "kms: " + device_path_ + " refused a " + std::to_string(width) + "x" + std::to_string(height) + " " + fourcc +
             " framebuffer with " + std::to_string(planes) + " plane(s), " +
-            (with_modifier ? std::string("modifier ") + modifier_text : std::string("no modifier")) + " (drmModeAddFB2: " +
-            base::errno_text(errno) + ")";
+            (with_modifier ? std::string("modifier ") + modifier_text : std::string("no modifier")) +
+            " (drmModeAddFB2: " + base::errno_text(errno) + ")";
     return 0;
   }
   gbm_bo_set_user_data(bo, new FbData{fd_, fb}, destroy_fb);
   return fb;
 }
 
-void Surface::release(gbm_bo* bo) { gbm_surface_release_buffer(surface_, bo); }
+void Surface::release(gbm_bo* bo) {
+  gbm_surface_release_buffer(surface_, bo);
+}
 
 void Surface::flip_completed() {
   if (shown_ != nullptr) release(shown_);

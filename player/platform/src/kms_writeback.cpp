@@ -31,11 +31,12 @@ void xrgb_to_rgba(const std::uint8_t* source, std::uint32_t pitch, std::uint32_t
 
 }  // namespace
 
-bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t>& rgba, std::string& error, bool& needs_modeset) {
+bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t>& rgba, std::string& error,
+                       bool& needs_modeset) {
   const int fd = capture.fd;
   const std::uint32_t width = static_cast<std::uint32_t>(capture.width), height = static_cast<std::uint32_t>(capture.height);
-  const std::string what = "the writeback connector on CRTC " + std::to_string(capture.crtc) + " at " + std::to_string(width) + "x" +
-                           std::to_string(height) + " XRGB8888";
+  const std::string what = "the writeback connector on CRTC " + std::to_string(capture.crtc) + " at " + std::to_string(width) +
+                           "x" + std::to_string(height) + " XRGB8888";
   std::uint32_t handle = 0, pitch = 0, fb = 0;
   std::uint64_t bytes = 0, offset = 0;
   if (drmModeCreateDumbBuffer(fd, width, height, 32, 0, &handle, &pitch, &bytes) != 0) {
@@ -64,7 +65,9 @@ bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t
       detached_display = detach;
       if (ok || errno != EINVAL) break;
     }
-    if (!ok) error = "kms: the commit attaching " + what + " was refused (" + base::errno_text(errno) + "), beside " + capture.display_name + " and without it";
+    if (!ok)
+      error = "kms: the commit attaching " + what + " was refused (" + base::errno_text(errno) + "), beside " +
+              capture.display_name + " and without it";
   }
   if (ok && fence >= 0) {
     pollfd wait{fence, POLLIN, 0};
@@ -87,7 +90,8 @@ bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t
   AtomicPtr restore(drmModeAtomicAlloc());
   drmModeAtomicAddProperty(restore.get(), capture.writeback, crtc_prop, 0);
   drmModeAtomicAddProperty(restore.get(), capture.writeback, fb_prop, 0);
-  if (detached_display) drmModeAtomicAddProperty(restore.get(), capture.display_connector, capture.display_connector_crtc, capture.crtc);
+  if (detached_display)
+    drmModeAtomicAddProperty(restore.get(), capture.display_connector, capture.display_connector_crtc, capture.crtc);
   if (drmModeAtomicCommit(fd, restore.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) != 0) needs_modeset = true;
   if (fb != 0) drmModeRmFB(fd, fb);
   drmModeDestroyDumbBuffer(fd, handle);

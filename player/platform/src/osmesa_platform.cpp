@@ -11,9 +11,8 @@ namespace {
 // dlopen(RTLD_LOCAL) so its gl* exports never clash with libGLESv2's.
 using OSMesaContext = void*;
 constexpr int kOsmesaRgba = 0x1908;  // GL_RGBA
-constexpr int kOsmesaFormat = 0x22, kOsmesaDepthBits = 0x30, kOsmesaStencilBits = 0x31,
-              kOsmesaAccumBits = 0x32, kOsmesaProfile = 0x33, kOsmesaCoreProfile = 0x34,
-              kOsmesaMajor = 0x36, kOsmesaMinor = 0x37;
+constexpr int kOsmesaFormat = 0x22, kOsmesaDepthBits = 0x30, kOsmesaStencilBits = 0x31, kOsmesaAccumBits = 0x32,
+              kOsmesaProfile = 0x33, kOsmesaCoreProfile = 0x34, kOsmesaMajor = 0x36, kOsmesaMinor = 0x37;
 using CreateContextAttribs = OSMesaContext (*)(const int*, OSMesaContext);
 using DestroyContext = void (*)(OSMesaContext);
 using MakeCurrent = unsigned char (*)(OSMesaContext, void*, unsigned, int, int);
@@ -49,8 +48,8 @@ class OsmesaPlatform final : public Platform {
     if (size == size_ && !buffer_.empty()) return true;
     std::vector<unsigned char> buffer(static_cast<size_t>(size.width) * static_cast<size_t>(size.height) * 4);
     if (!library_.make_current(context_, buffer.data(), 0x1401 /* GL_UNSIGNED_BYTE */, size.width, size.height)) {
-      error = "osmesa: OSMesaMakeCurrent with a " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-              " buffer failed";
+      error =
+          "osmesa: OSMesaMakeCurrent with a " + std::to_string(size.width) + "x" + std::to_string(size.height) + " buffer failed";
       return false;
     }
     buffer_ = std::move(buffer);
@@ -85,9 +84,21 @@ std::unique_ptr<Platform> create_osmesa(const Options& options, std::string& err
     error = "osmesa: libOSMesa lacks OSMesaCreateContextAttribs (Mesa 10 or later is needed)";
     return nullptr;
   }
-  const int attributes[] = {kOsmesaFormat, kOsmesaRgba, kOsmesaDepthBits, 24, kOsmesaStencilBits, 0,
-                            kOsmesaAccumBits, 0, kOsmesaProfile, kOsmesaCoreProfile,
-                            kOsmesaMajor, 4, kOsmesaMinor, 5, 0};
+  const int attributes[] = {kOsmesaFormat,
+                            kOsmesaRgba,
+                            kOsmesaDepthBits,
+                            24,
+                            kOsmesaStencilBits,
+                            0,
+                            kOsmesaAccumBits,
+                            0,
+                            kOsmesaProfile,
+                            kOsmesaCoreProfile,
+                            kOsmesaMajor,
+                            4,
+                            kOsmesaMinor,
+                            5,
+                            0};
   OSMesaContext context = library.create(attributes, nullptr);
   if (!context) {
     error = "osmesa: no OpenGL 4.5 core context (Mesa's llvmpipe provides one)";

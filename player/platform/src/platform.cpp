@@ -8,15 +8,23 @@ namespace {
 constexpr Entry kRegistry[] = {
     {"egl", "headless EGL: EGL_EXT_platform_device for GPUs, else Mesa's surfaceless platform", true, create_egl, {}},
     {"osmesa", "Mesa's OSMesa, desktop GL 4.5 core running the same ES 3.1 shaders", true, create_osmesa, {}},
-    {"window", "a desktop window (SDL2, X11 or Wayland) with OpenGL ES 3.1 on EGL; F11 toggles fullscreen", false,
-     create_window, {.shows_frames_on_a_display = true, .desktop_window = true}},
-    {"kms", "fullscreen on a display through DRM/KMS and EGL on GBM, no display server (the board default)", false,
-     create_kms, {.shows_frames_on_a_display = true, .desktop_window = false}},
+    {"window",
+     "a desktop window (SDL2, X11 or Wayland) with OpenGL ES 3.1 on EGL; F11 toggles fullscreen",
+     false,
+     create_window,
+     {.shows_frames_on_a_display = true, .desktop_window = true}},
+    {"kms",
+     "fullscreen on a display through DRM/KMS and EGL on GBM, no display server (the board default)",
+     false,
+     create_kms,
+     {.shows_frames_on_a_display = true, .desktop_window = false}},
 };
 
 }  // namespace
 
-std::span<const Entry> registry() { return kRegistry; }
+std::span<const Entry> registry() {
+  return kRegistry;
+}
 
 Capabilities capabilities(std::string_view name) {
   for (const Entry& entry : registry())

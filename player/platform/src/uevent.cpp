@@ -23,10 +23,14 @@ bool parse(std::span<const char> bytes, Message& out) {
     const size_t equals = field.find('=');
     if (equals != std::string_view::npos) {
       const std::string_view key = field.substr(0, equals), value = field.substr(equals + 1);
-      if (key == "ACTION") out.action = value;
-      else if (key == "SUBSYSTEM") out.subsystem = value;
-      else if (key == "DEVNAME") out.devname = value;
-      else if ((key == "HOTPLUG" || key == "SYNTH_ARG_HOTPLUG") && value == "1") out.hotplug = true;
+      if (key == "ACTION")
+        out.action = value;
+      else if (key == "SUBSYSTEM")
+        out.subsystem = value;
+      else if (key == "DEVNAME")
+        out.devname = value;
+      else if ((key == "HOTPLUG" || key == "SYNTH_ARG_HOTPLUG") && value == "1")
+        out.hotplug = true;
     }
     at = end + 1;
   }

@@ -26,8 +26,8 @@ using GetError = unsigned (*)();
 // request is only a request: SDL drops it where EGL_KHR_gl_colorspace is missing, and the config
 // may ignore it). A query that is missing or fails answers false, so the shader encodes.
 bool query_srgb_back_buffer() {
-  auto get_attachment = reinterpret_cast<GetFramebufferAttachmentParameteriv>(
-      SDL_GL_GetProcAddress("glGetFramebufferAttachmentParameteriv"));
+  auto get_attachment =
+      reinterpret_cast<GetFramebufferAttachmentParameteriv>(SDL_GL_GetProcAddress("glGetFramebufferAttachmentParameteriv"));
   auto get_error = reinterpret_cast<GetError>(SDL_GL_GetProcAddress("glGetError"));
   if (get_attachment == nullptr || get_error == nullptr) return false;
   // A fresh context has no errors queued, and GL queues at most one per flag: a few reads empty it.
@@ -77,7 +77,9 @@ class WindowPlatform final : public Platform {
     SDL_QuitSubSystem(SDL_INIT_VIDEO);
   }
 
-  std::string_view name() const override { return "window"; }
+  std::string_view name() const override {
+    return "window";
+  }
   std::string description() const override {
     const char* driver = SDL_GetCurrentVideoDriver();
     return std::string("SDL2 ") + (driver ? driver : "unknown") + " window, OpenGL ES 3.1 via EGL" +
@@ -91,15 +93,21 @@ class WindowPlatform final : public Platform {
     if (vsync_) used.emplace_back("SDL_GL_SetSwapInterval");
     return used;
   }
-  void* proc_address(const char* name) const override { return SDL_GL_GetProcAddress(name); }
+  void* proc_address(const char* name) const override {
+    return SDL_GL_GetProcAddress(name);
+  }
 
   Size size() const override {
     Size size;
     SDL_GL_GetDrawableSize(window_, &size.width, &size.height);
     return size;
   }
-  unsigned framebuffer() const override { return 0; }
-  bool srgb_framebuffer() const override { return srgb_; }
+  unsigned framebuffer() const override {
+    return 0;
+  }
+  bool srgb_framebuffer() const override {
+    return srgb_;
+  }
 
   bool resize(Size size, std::string& error) override {
     if (closed_) {
@@ -120,13 +128,14 @@ class WindowPlatform final : public Platform {
   // The X11 connection: readable when the server sent something. Xlib may already hold events it
   // read while doing other work, which leaves the fd quiet, so the loop drains once per frame
   // anyway. -1 on Wayland and elsewhere (the per-frame drain is then the only way in).
-  int event_fd() const override { return event_fd_; }
+  int event_fd() const override {
+    return event_fd_;
+  }
 
   std::size_t drain_events(std::span<Event> out) override {
     SDL_PumpEvents();
     SDL_Event event;
-    while (pending_ < ring_.size() && SDL_PeepEvents(&event, 1, SDL_GETEVENT, SDL_FIRSTEVENT, SDL_LASTEVENT) == 1)
-      convert(event);
+    while (pending_ < ring_.size() && SDL_PeepEvents(&event, 1, SDL_GETEVENT, SDL_FIRSTEVENT, SDL_LASTEVENT) == 1) convert(event);
     std::size_t copied = 0;
     for (; copied < out.size() && pending_ > 0; ++copied) {
       out[copied] = ring_[first_];
@@ -218,8 +227,9 @@ void set_gl_attributes(bool srgb, bool debug) {
 std::unique_ptr<Platform> create_window(const Options& options, std::string& error) {
   // SDL_VIDEODRIVER picks a driver by hand (say for SDL's offscreen driver); otherwise a display is needed.
   if (!std::getenv("SDL_VIDEODRIVER") && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) {
-    error = "window: no display (DISPLAY is not set; the window platform needs X11 or Wayland, use --platform egl "
-            "for headless)";
+    error =
+        "window: no display (DISPLAY is not set; the window platform needs X11 or Wayland, use --platform egl "
+        "for headless)";
     return nullptr;
   }
   // GLX would give desktop GL; EGL gives Mesa's OpenGL ES 3.1 on X11 as on Wayland.
@@ -242,8 +252,7 @@ std::unique_ptr<Platform> create_window(const Options& options, std::string& err
     if (window) break;
   }
   if (!window) {
-    error = std::string("window: SDL could not make a window with an OpenGL ES 3.1 framebuffer (") + SDL_GetError() +
-            ")";
+    error = std::string("window: SDL could not make a window with an OpenGL ES 3.1 framebuffer (") + SDL_GetError() + ")";
     SDL_QuitSubSystem(SDL_INIT_VIDEO);
     return nullptr;
   }

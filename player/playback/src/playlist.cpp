@@ -2,6 +2,7 @@
 
 #include "base/parse.h"
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -13,7 +14,6 @@
 #include <filesystem>
 #include <optional>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace playback {
 
@@ -27,10 +27,10 @@ struct Named {
   std::string_view name;
   E value;
 };
-constexpr std::array<Named<Motion>, 3> motion_names{{
-    {"still", Motion::still}, {"turntable", Motion::turntable}, {"orbit", Motion::orbit}}};
-constexpr std::array<Named<Schedule>, 2> schedule_names{{
-    {"sequential", Schedule::sequential}, {"wallclock", Schedule::wallclock}}};
+constexpr std::array<Named<Motion>, 3> motion_names{
+    {{"still", Motion::still}, {"turntable", Motion::turntable}, {"orbit", Motion::orbit}}};
+constexpr std::array<Named<Schedule>, 2> schedule_names{
+    {{"sequential", Schedule::sequential}, {"wallclock", Schedule::wallclock}}};
 
 template <class E, std::size_t N>
 std::string one_of(const std::array<Named<E>, N>& names) {
@@ -50,18 +50,24 @@ std::string escape(std::string_view s) {
   std::string out;
   for (const char c : s) {
     const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') out += {'\\', c};
-    else if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
+    if (c == '"' || c == '\\')
+      out += {'\\', c};
+    else if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
     else if (u < 0x20 || u == 0x7f) {
       char buf[8];
       std::snprintf(buf, sizeof buf, "\\x%02x", u);
       out += buf;
-    } else out += c;
+    } else
+      out += c;
   }
   return out;
 }
-std::string quote(std::string_view s) { return "\"" + escape(s) + "\""; }
+std::string quote(std::string_view s) {
+  return "\"" + escape(s) + "\"";
+}
 
 // What a node is, for "got ...": its value for scalars, its type otherwise.
 std::string describe(const toml::node& n) {
@@ -80,16 +86,26 @@ std::string describe(const toml::node& n) {
 // What a node's type is, for "got ..." after a type mismatch.
 std::string type_of(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a floating-point number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    case toml::node_type::none: return "nothing";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      return "nothing";
   }
   return "nothing";
 }
@@ -99,10 +115,9 @@ class Parser {
  public:
   Parser(std::string source, std::string& error) : source_(std::move(source)), error_(error) {}
 
-  bool fail(const toml::source_region& where, const std::string& field, const std::string& expected,
-            const std::string& got) {
-    error_ = source_ + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": " +
-             field + ": expected " + expected + ", got " + got;
+  bool fail(const toml::source_region& where, const std::string& field, const std::string& expected, const std::string& got) {
+    error_ = source_ + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": " + field +
+             ": expected " + expected + ", got " + got;
     return false;
   }
 
@@ -138,23 +153,26 @@ class Parser {
   bool number(const toml::node& n, const std::string& field, const std::string& what, Ok ok, double& out,
               const std::string& negative = {}) {
     double v = 0;
-    if (auto i = n.as_integer()) v = static_cast<double>(i->get());
-    else if (auto f = n.as_floating_point()) v = f->get();
-    else return fail(n.source(), field, what, type_of(n));
+    if (auto i = n.as_integer())
+      v = static_cast<double>(i->get());
+    else if (auto f = n.as_floating_point())
+      v = f->get();
+    else
+      return fail(n.source(), field, what, type_of(n));
     if (!std::isfinite(v) || !ok(v)) return fail(n.source(), field, v < 0 && !negative.empty() ? negative : what, describe(n));
     out = v;
     return true;
   }
   template <class Ok>
-  bool number(const toml::table& t, const std::string& prefix, std::string_view key, const std::string& what, Ok ok,
-              double& out, const std::string& negative = {}) {
+  bool number(const toml::table& t, const std::string& prefix, std::string_view key, const std::string& what, Ok ok, double& out,
+              const std::string& negative = {}) {
     const toml::node* n = t.get(key);
     return !n || number(*n, prefix + std::string(key), what, ok, out, negative);
   }
 
   template <class E, std::size_t N>
-  bool choice(const toml::table& t, const std::string& prefix, std::string_view key,
-              const std::array<Named<E>, N>& names, E& out) {
+  bool choice(const toml::table& t, const std::string& prefix, std::string_view key, const std::array<Named<E>, N>& names,
+              E& out) {
     const toml::node* n = t.get(key);
     if (!n) return true;
     if (auto s = n->as_string()) {
@@ -168,8 +186,8 @@ class Parser {
     return fail(n->source(), prefix + std::string(key), one_of(names), type_of(*n));
   }
 
-  const toml::table* table(const toml::table& t, const std::string& prefix, std::string_view key,
-                           const std::string& what, bool& ok) {
+  const toml::table* table(const toml::table& t, const std::string& prefix, std::string_view key, const std::string& what,
+                           bool& ok) {
     const toml::node* n = t.get(key);
     if (!n) return nullptr;
     if (!n->is_table()) ok = fail(n->source(), prefix + std::string(key), what, type_of(*n));
@@ -254,8 +272,9 @@ bool read_background(Parser& p, const toml::node& n, const std::string& field, g
   if (a->size() != 3) return p.fail(n.source(), field, what, describe(n));
   for (std::size_t i = 0; i < 3; ++i) {
     double v = 0;
-    if (!p.number(*a->get(i), field + "[" + std::to_string(i) + "]", "a number in [0, 1]",
-                  [](double x) { return x >= 0 && x <= 1; }, v))
+    if (!p.number(
+            *a->get(i), field + "[" + std::to_string(i) + "]", "a number in [0, 1]", [](double x) { return x >= 0 && x <= 1; },
+            v))
       return false;
     out[static_cast<int>(i)] = static_cast<float>(v);
   }
@@ -284,17 +303,22 @@ bool read_keys(Parser& p, const toml::table& cam, const std::string& prefix, dou
     if (!t) return p.fail(kt.source(), kp + "t", "a time in seconds", "nothing");
     const double prev = i ? c.keys.back().t : 0;
     if (i == 0) {
-      if (!p.number(*t, kp + "t", "0 (the first key is the item's start)", [](double v) { return v == 0; }, k.t))
+      if (!p.number(
+              *t, kp + "t", "0 (the first key is the item's start)", [](double v) { return v == 0; }, k.t))
         return false;
-    } else if (!p.number(*t, kp + "t", "a time after the previous key's " + format_number(prev),
-                         [&](double v) { return v > prev; }, k.t)) {
+    } else if (!p.number(
+                   *t, kp + "t", "a time after the previous key's " + format_number(prev), [&](double v) { return v > prev; },
+                   k.t)) {
       return false;
     } else if (k.t > duration) {
       return p.fail(t->source(), kp + "t", "a time within the item's " + format_number(duration) + " s", describe(*t));
     }
-    if (!p.number(kt, kp, "azimuth", "degrees", [](double) { return true; }, k.azimuth_deg) ||
-        !p.number(kt, kp, "elevation", "degrees in [-89, 89]", [](double v) { return v >= -89 && v <= 89; }, k.elevation_deg) ||
-        !p.number(kt, kp, "distance", "a multiple of the fitting distance > 0", [](double v) { return v > 0; }, k.distance))
+    if (!p.number(
+            kt, kp, "azimuth", "degrees", [](double) { return true; }, k.azimuth_deg) ||
+        !p.number(
+            kt, kp, "elevation", "degrees in [-89, 89]", [](double v) { return v >= -89 && v <= 89; }, k.elevation_deg) ||
+        !p.number(
+            kt, kp, "distance", "a multiple of the fitting distance > 0", [](double v) { return v > 0; }, k.distance))
       return false;
     c.keys.push_back(k);
   }
@@ -304,12 +328,17 @@ bool read_keys(Parser& p, const toml::table& cam, const std::string& prefix, dou
 bool read_camera(Parser& p, const toml::table& t, const std::string& prefix, double duration, CameraPath& c) {
   if (!p.known_keys(t, prefix, {"motion", "period", "elevation", "distance", "azimuth", "fov", "keys"})) return false;
   return p.choice(t, prefix, "motion", motion_names, c.motion) &&
-         p.number(t, prefix, "period", "seconds per turn > 0", [](double v) { return v > 0; }, c.period_s,
-                  "seconds per turn > 0 (a negative period is not supported)") &&
-         p.number(t, prefix, "elevation", "degrees in [-89, 89]", [](double v) { return v >= -89 && v <= 89; }, c.elevation_deg) &&
-         p.number(t, prefix, "distance", "a multiple of the fitting distance > 0", [](double v) { return v > 0; }, c.distance) &&
-         p.number(t, prefix, "azimuth", "degrees", [](double) { return true; }, c.azimuth_deg) &&
-         p.number(t, prefix, "fov", "degrees in (1, 170)", [](double v) { return v > 1 && v < 170; }, c.fov_deg) &&
+         p.number(
+             t, prefix, "period", "seconds per turn > 0", [](double v) { return v > 0; }, c.period_s,
+             "seconds per turn > 0 (a negative period is not supported)") &&
+         p.number(
+             t, prefix, "elevation", "degrees in [-89, 89]", [](double v) { return v >= -89 && v <= 89; }, c.elevation_deg) &&
+         p.number(
+             t, prefix, "distance", "a multiple of the fitting distance > 0", [](double v) { return v > 0; }, c.distance) &&
+         p.number(
+             t, prefix, "azimuth", "degrees", [](double) { return true; }, c.azimuth_deg) &&
+         p.number(
+             t, prefix, "fov", "degrees in (1, 170)", [](double v) { return v > 1 && v < 170; }, c.fov_deg) &&
          read_keys(p, t, prefix, duration, c);
 }
 
@@ -322,11 +351,16 @@ bool read_settings(Parser& p, const toml::table& t, const std::string& prefix, c
   for (const auto& [k, v] : entries) {
     const std::string field = prefix + escape(k->str());
     std::string value;
-    if (auto s = v->as_string()) value = s->get();
-    else if (auto i = v->as_integer()) value = std::to_string(i->get());
-    else if (auto f = v->as_floating_point()) value = format_number(f->get());
-    else if (auto b = v->as_boolean()) value = b->get() ? "on" : "off";
-    else return p.fail(v->source(), field, "a string, integer, float or boolean", type_of(*v));
+    if (auto s = v->as_string())
+      value = s->get();
+    else if (auto i = v->as_integer())
+      value = std::to_string(i->get());
+    else if (auto f = v->as_floating_point())
+      value = format_number(f->get());
+    else if (auto b = v->as_boolean())
+      value = b->get() ? "on" : "off";
+    else
+      return p.fail(v->source(), field, "a string, integer, float or boolean", type_of(*v));
     if (validate) {
       std::string why;
       if (!validate(k->str(), value, why)) {
@@ -340,15 +374,15 @@ bool read_settings(Parser& p, const toml::table& t, const std::string& prefix, c
   return true;
 }
 
-bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const toml::table& t, std::size_t index,
-               Item& item) {
+bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const toml::table& t, std::size_t index, Item& item) {
   const std::string prefix = "item[" + std::to_string(index) + "].";
   item.line = static_cast<int>(t.source().begin.line);
   if (!p.known_keys(t, prefix, {"scene", "duration", "camera", "ao", "background", "display"})) return false;
   const toml::node* scene = t.get("scene");
   if (!scene) return p.fail(t.source(), prefix + "scene", "a path or builtin:NAME", "nothing");
   if (!read_path(p, paths, *scene, prefix + "scene", true, item.scene)) return false;
-  if (!p.number(t, prefix, "duration", "a number of seconds > 0", [](double v) { return v > 0; }, item.duration_s))
+  if (!p.number(
+          t, prefix, "duration", "a number of seconds > 0", [](double v) { return v > 0; }, item.duration_s))
     return false;
   bool ok = true;
   if (const auto* cam = p.table(t, prefix, "camera", "a table", ok)) {
@@ -375,8 +409,8 @@ bool parse(std::string_view text, const std::string& source_path, const ParseOpt
   try {
     root = toml::parse(text, std::string_view(source_path));
   } catch (const toml::parse_error& e) {
-    error = source_path + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) +
-            ": " + std::string(e.description());
+    error = source_path + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) + ": " +
+            std::string(e.description());
     return false;
   }
   Parser p(source_path, error);
@@ -388,8 +422,8 @@ bool parse(std::string_view text, const std::string& source_path, const ParseOpt
 
   Playlist pl;
   pl.source = source_path;
-  if (!p.known_keys(root, "", {"loop", "shuffle", "seed", "fade", "schedule", "item"}) ||
-      !p.boolean(root, "", "loop", pl.loop) || !p.boolean(root, "", "shuffle", pl.shuffle))
+  if (!p.known_keys(root, "", {"loop", "shuffle", "seed", "fade", "schedule", "item"}) || !p.boolean(root, "", "loop", pl.loop) ||
+      !p.boolean(root, "", "shuffle", pl.shuffle))
     return false;
   if (const toml::node* n = root.get("seed")) {
     const auto* i = n->as_integer();
@@ -397,7 +431,8 @@ bool parse(std::string_view text, const std::string& source_path, const ParseOpt
     if (i->get() < 0) return p.fail(n->source(), "seed", "an integer >= 0", describe(*n));
     pl.seed = static_cast<std::uint64_t>(i->get());
   }
-  if (!p.number(root, "", "fade", "a number of seconds >= 0", [](double v) { return v >= 0; }, pl.fade_s) ||
+  if (!p.number(
+          root, "", "fade", "a number of seconds >= 0", [](double v) { return v >= 0; }, pl.fade_s) ||
       !p.choice(root, "", "schedule", schedule_names, pl.schedule))
     return false;
   const toml::node* items = root.get("item");
@@ -430,8 +465,8 @@ std::string_view name(Schedule s) {
   return "?";
 }
 
-bool parse_playlist(std::string_view toml_text, const std::string& source_path, const ParseOptions& options,
-                    Playlist& out, std::string& error) {
+bool parse_playlist(std::string_view toml_text, const std::string& source_path, const ParseOptions& options, Playlist& out,
+                    std::string& error) {
   try {
     return parse(toml_text, source_path, options, out, error);
   } catch (const std::exception& e) {  // allocation failures and the like; a validator's own throws

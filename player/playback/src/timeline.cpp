@@ -9,9 +9,9 @@ namespace playback {
 
 namespace {
 
-constexpr double min_duration_s = 1e-3;   // guards the arithmetic against hand-built playlists
-constexpr double previous_window_s = 2.0; // previous() within this of an item's start: the item before
-constexpr double wall_jump_s = 0.25;      // a wall clock step larger than this within a slot is a cut
+constexpr double min_duration_s = 1e-3;    // guards the arithmetic against hand-built playlists
+constexpr double previous_window_s = 2.0;  // previous() within this of an item's start: the item before
+constexpr double wall_jump_s = 0.25;       // a wall clock step larger than this within a slot is a cut
 
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ull;
@@ -55,14 +55,14 @@ double spline(const std::vector<OrbitKey>& k, double t, double OrbitKey::*channe
     return (k[j + 1].*channel - k[j - 1].*channel) / (k[j + 1].t - k[j - 1].t);
   };
   const double h = k[i + 1].t - k[i].t, s = (t - k[i].t) / h, s2 = s * s, s3 = s2 * s;
-  return (2 * s3 - 3 * s2 + 1) * (k[i].*channel) + (s3 - 2 * s2 + s) * h * tangent(i) +
-         (-2 * s3 + 3 * s2) * (k[i + 1].*channel) + (s3 - s2) * h * tangent(i + 1);
+  return (2 * s3 - 3 * s2 + 1) * (k[i].*channel) + (s3 - 2 * s2 + s) * h * tangent(i) + (-2 * s3 + 3 * s2) * (k[i + 1].*channel) +
+         (s3 - s2) * h * tangent(i + 1);
 }
 
 // The spline may overshoot between keys; elevation and distance must stay valid.
 double within_keys(const std::vector<OrbitKey>& k, double v, double OrbitKey::*channel) {
-  const auto [lo, hi] = std::minmax_element(k.begin(), k.end(),
-                                            [&](const OrbitKey& a, const OrbitKey& b) { return a.*channel < b.*channel; });
+  const auto [lo, hi] =
+      std::minmax_element(k.begin(), k.end(), [&](const OrbitKey& a, const OrbitKey& b) { return a.*channel < b.*channel; });
   return std::clamp(v, (*lo).*channel, (*hi).*channel);
 }
 
@@ -93,8 +93,10 @@ Timeline::Timeline(Playlist playlist, double now, double wall_now) {
   last_wall_ = wall_now;
   last_wall_mono_ = now;
   reset_playlist(std::move(playlist));
-  if (mode_ == Mode::wallclock) run_wallclock(wall_now);
-  else run_sequential();
+  if (mode_ == Mode::wallclock)
+    run_wallclock(wall_now);
+  else
+    run_sequential();
 }
 
 void Timeline::reset_playlist(Playlist playlist) {
@@ -117,8 +119,12 @@ void Timeline::advance_clock(double now) {
   last_now_ = now;
 }
 
-bool Timeline::looping() const { return mode_ == Mode::local || playlist_.loop; }
-bool Timeline::shuffled() const { return mode_ == Mode::sequential && playlist_.shuffle; }
+bool Timeline::looping() const {
+  return mode_ == Mode::local || playlist_.loop;
+}
+bool Timeline::shuffled() const {
+  return mode_ == Mode::sequential && playlist_.shuffle;
+}
 
 double Timeline::duration(int item) const {
   const double d = playlist_.items[static_cast<std::size_t>(item)].duration_s;
@@ -405,8 +411,10 @@ void Timeline::set_playable(int item, bool playable) {
 
 void Timeline::replace(Playlist playlist, double now) {
   advance_clock(now);
-  if (mode_ == Mode::wallclock) run_wallclock(last_wall_ + (last_now_ - last_wall_mono_));
-  else run_sequential();
+  if (mode_ == Mode::wallclock)
+    run_wallclock(last_wall_ + (last_now_ - last_wall_mono_));
+  else
+    run_sequential();
   const int old_item = current_item();
   const double old_time = current_item_time();
   const std::string old_scene = old_item >= 0 ? playlist_.items[static_cast<std::size_t>(old_item)].scene : "";

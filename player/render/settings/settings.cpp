@@ -20,13 +20,18 @@ bool parse_non_negative(std::string_view text, float& out) {
 }
 
 bool parse_on_off(std::string_view text, bool& out) {
-  if (text == "on") out = true;
-  else if (text == "off") out = false;
-  else return false;
+  if (text == "on")
+    out = true;
+  else if (text == "off")
+    out = false;
+  else
+    return false;
   return true;
 }
 
-std::string on_off(bool on) { return on ? "on" : "off"; }
+std::string on_off(bool on) {
+  return on ? "on" : "off";
+}
 
 std::string float_text(float value) {
   char text[32];
@@ -60,19 +65,30 @@ const Row kRows[] = {
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.ao); },
      [](const FrameSettings& s) { return on_off(s.ao); }},
-    {{"estimator", "AO estimator: sphere (the paper, Mittring), hemisphere (cosine-weighted about the normal), horizon (GTAO)", ""},
+    {{"estimator", "AO estimator: sphere (the paper, Mittring), hemisphere (cosine-weighted about the normal), horizon (GTAO)",
+      ""},
      [] { return names::choices<ssao::Estimator>(ssao::kEstimatorNames); },
-     [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Estimator>(ssao::kEstimatorNames, v, s.ao_settings.estimator); },
+     [](FrameSettings& s, std::string_view v) {
+       return parse_enum<ssao::Estimator>(ssao::kEstimatorNames, v, s.ao_settings.estimator);
+     },
      [](const FrameSettings& s) { return std::string(ssao::name(s.ao_settings.estimator)); }},
-    {{"precision", "AO per-sample arithmetic: highp (32-bit) or mediump (fp16 where the GPU has it, as embedded GPUs run it; the horizon estimator keeps its taps highp)", ""},
+    {{"precision",
+      "AO per-sample arithmetic: highp (32-bit) or mediump (fp16 where the GPU has it, as embedded GPUs run it; the horizon "
+      "estimator keeps its taps highp)",
+      ""},
      [] { return names::choices<ssao::Precision>(ssao::kPrecisionNames); },
-     [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Precision>(ssao::kPrecisionNames, v, s.ao_settings.precision); },
+     [](FrameSettings& s, std::string_view v) {
+       return parse_enum<ssao::Precision>(ssao::kPrecisionNames, v, s.ao_settings.precision);
+     },
      [](const FrameSettings& s) { return std::string(ssao::name(s.ao_settings.precision)); }},
     {{"samples", "AO samples per radius (horizon: taps per pixel, 2 x steps per slice)", "1..64"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_int(v, 1, SSAO_MAX_SAMPLES, s.ao_settings.samples); },
      [](const FrameSettings& s) { return std::to_string(s.ao_settings.samples); }},
-    {{"steps", "Horizon estimator: taps on each side of a slice, the first 1.6 pixels out, the rest evenly to the radius (slices = samples / (2 x steps); at most samples / 2)", "1..32"},
+    {{"steps",
+      "Horizon estimator: taps on each side of a slice, the first 1.6 pixels out, the rest evenly to the radius (slices = "
+      "samples / (2 x steps); at most samples / 2)",
+      "1..32"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_int(v, 1, SSAO_MAX_SAMPLES / 2, s.ao_settings.steps); },
      [](const FrameSettings& s) { return std::to_string(s.ao_settings.steps); }},
@@ -86,7 +102,9 @@ const Row kRows[] = {
      [](const FrameSettings& s) { return float_text(s.radius); }},
     {{"pattern", "Sample pattern of the sphere and hemisphere kernels (the horizon spaces its slices evenly)", ""},
      [] { return names::choices<ssao::Pattern>(ssao::kPatternNames); },
-     [](FrameSettings& s, std::string_view v) { return parse_enum<ssao::Pattern>(ssao::kPatternNames, v, s.ao_settings.pattern); },
+     [](FrameSettings& s, std::string_view v) {
+       return parse_enum<ssao::Pattern>(ssao::kPatternNames, v, s.ao_settings.pattern);
+     },
      [](const FrameSettings& s) { return std::string(ssao::name(s.ao_settings.pattern)); }},
     {{"ao-strength", "Power on 1 - AO in the shaded image (1: the AO as computed; the AO view is never changed)", "0..8"},
      nullptr,
@@ -121,15 +139,20 @@ const Row kRows[] = {
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.ao_settings.skip_background); },
      [](const FrameSettings& s) { return on_off(s.ao_settings.skip_background); }},
-    {{"untextured-variant", "Untextured materials use the G-buffer variant without a texture fetch (off only to measure it)", "on|off"},
+    {{"untextured-variant", "Untextured materials use the G-buffer variant without a texture fetch (off only to measure it)",
+      "on|off"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.untextured_variant); },
      [](const FrameSettings& s) { return on_off(s.untextured_variant); }},
-    {{"reuse-ao", "Keep the last frame's AO while camera and scene stand still, once temporal has averaged history frames (off: recompute every frame, for timing)", "on|off"},
+    {{"reuse-ao",
+      "Keep the last frame's AO while camera and scene stand still, once temporal has averaged history frames (off: recompute "
+      "every frame, for timing)",
+      "on|off"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.reuse_static_ao); },
      [](const FrameSettings& s) { return on_off(s.reuse_static_ao); }},
-    {{"temporal", "Accumulate AO over frames: samples turn each frame, the previous frames' AO is reprojected and averaged in", "on|off"},
+    {{"temporal", "Accumulate AO over frames: samples turn each frame, the previous frames' AO is reprojected and averaged in",
+      "on|off"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.temporal); },
      [](const FrameSettings& s) { return on_off(s.temporal); }},
@@ -174,10 +197,16 @@ std::string known_keys() {
 
 }  // namespace
 
-std::string_view name(Picture output) { return names::name_of<Picture>(kPictureNames, output); }
-std::string_view name(Prepass prepass) { return names::name_of<Prepass>(kPrepassNames, prepass); }
+std::string_view name(Picture output) {
+  return names::name_of<Picture>(kPictureNames, output);
+}
+std::string_view name(Prepass prepass) {
+  return names::name_of<Prepass>(kPrepassNames, prepass);
+}
 
-std::span<const SettingKey> setting_keys() { return {key_table(), std::size(kRows)}; }
+std::span<const SettingKey> setting_keys() {
+  return {key_table(), std::size(kRows)};
+}
 
 bool apply_setting(FrameSettings& settings, std::string_view key, std::string_view value, std::string& error) {
   const Row* row = find(key);

@@ -12,7 +12,8 @@ std::vector<lightfield::Module> checked_modules(const lightfield::ModulesDisplay
   std::vector<lightfield::Module> modules;
   const int checked = std::min(count, 16);
   for (int i = 0; i < checked; ++i)
-    modules.push_back(lightfield::module_of(display, checked == 1 ? 0 : static_cast<int>(std::lround(i * (count - 1.0) / (checked - 1)))));
+    modules.push_back(
+        lightfield::module_of(display, checked == 1 ? 0 : static_cast<int>(std::lround(i * (count - 1.0) / (checked - 1)))));
   return modules;
 }
 
@@ -38,7 +39,9 @@ scene::Vertex midpoint(const scene::Vertex& a, const scene::Vertex& b) {
 }
 
 using EdgeKey = std::pair<uint32_t, uint32_t>;
-EdgeKey key(uint32_t a, uint32_t b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
+EdgeKey key(uint32_t a, uint32_t b) {
+  return a < b ? EdgeKey{a, b} : EdgeKey{b, a};
+}
 
 }  // namespace
 
@@ -49,7 +52,8 @@ scene::Scene subdivide_for_modules(const scene::Scene& input, const lightfield::
   report = SubdivisionReport{};
   const std::vector<lightfield::Module> modules = checked_modules(display);
   std::vector<std::vector<glm::dmat4>> placements(scene.meshes.size());
-  for (const scene::Instance& instance : scene.instances) placements[static_cast<size_t>(instance.mesh)].push_back(instance.world);
+  for (const scene::Instance& instance : scene.instances)
+    placements[static_cast<size_t>(instance.mesh)].push_back(instance.world);
   size_t triangles = 0;
   for (const scene::Mesh& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
   report.triangles_before = triangles;
@@ -69,7 +73,8 @@ scene::Scene subdivide_for_modules(const scene::Scene& input, const lightfield::
           const EdgeKey edge = key(mesh.indices[t + static_cast<size_t>(e)], mesh.indices[t + static_cast<size_t>((e + 1) % 3)]);
           auto [it, fresh] = measured.try_emplace(edge, 0.0);
           if (fresh)
-            it->second = edge_error(modules, placements[m], roi, mesh.vertices[edge.first].position, mesh.vertices[edge.second].position);
+            it->second =
+                edge_error(modules, placements[m], roi, mesh.vertices[edge.first].position, mesh.vertices[edge.second].position);
           worst = std::max(worst, it->second);
           if (it->second > max_error_px) splits[m].try_emplace(edge, 0u);
         }
@@ -121,7 +126,8 @@ scene::Scene subdivide_for_modules(const scene::Scene& input, const lightfield::
           } else {
             while (!(mid[static_cast<size_t>(r)] >= 0 && mid[static_cast<size_t>((r + 1) % 3)] >= 0)) ++r;
           }
-          const int64_t a = v[static_cast<size_t>(r)], b = v[static_cast<size_t>((r + 1) % 3)], c = v[static_cast<size_t>((r + 2) % 3)];
+          const int64_t a = v[static_cast<size_t>(r)], b = v[static_cast<size_t>((r + 1) % 3)],
+                        c = v[static_cast<size_t>((r + 2) % 3)];
           const int64_t ab = mid[static_cast<size_t>(r)], bc = mid[static_cast<size_t>((r + 1) % 3)];
           if (split_count == 1) {
             emit(a, ab, c);

@@ -6,7 +6,9 @@
 
 namespace render::detail {
 
-inline GLuint groups(int size, int group) { return static_cast<GLuint>((size + group - 1) / group); }
+inline GLuint groups(int size, int group) {
+  return static_cast<GLuint>((size + group - 1) / group);
+}
 
 gl::Texture make_target(GLenum format, int width, int height, int levels = 1);
 gl::Buffer make_uniform_buffer(const void* data, GLsizeiptr size);

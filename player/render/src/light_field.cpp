@@ -48,8 +48,9 @@ bool LightFieldOutput::configure(const FrameSettings& frame_settings, const Scen
   adjustment_.clear();
   if (modules && settings.ao_settings.estimator == ssao::Estimator::horizon) {
     settings.ao_settings.estimator = ssao::Estimator::hemisphere;
-    adjustment_ = "estimator: hemisphere (horizon searches screen-space slices and has no form for optical modules; "
-                  "Algorithm 2 runs hemisphere)";
+    adjustment_ =
+        "estimator: hemisphere (horizon searches screen-space slices and has no form for optical modules; "
+        "Algorithm 2 runs hemisphere)";
   }
   settings.width = modules ? display.modules.width : display.quilt.view_width;
   settings.height = modules ? display.modules.height : display.quilt.view_height;
@@ -140,8 +141,8 @@ void LightFieldOutput::aim(const scene::Camera& camera) {
   // The outer views stand up to 1 / cos(cone / 2) farther from the scene than the centre one.
   const double near = camera.near * 0.8, far = camera.far * 1.25;
   for (int k = 0; k < views(); ++k) {
-    const lightfield::OffAxisView v = lightfield::quilt_view(camera.eye, camera.target, camera.up, camera.fov_y, aspect, near, far,
-                                                             display_.quilt.calibration.view_cone_deg, k, views());
+    const lightfield::OffAxisView v = lightfield::quilt_view(camera.eye, camera.target, camera.up, camera.fov_y, aspect, near,
+                                                             far, display_.quilt.calibration.view_cone_deg, k, views());
     View& view = views_[static_cast<size_t>(k)];
     view.view = v.view;
     view.projection = v.projection;
@@ -166,7 +167,9 @@ glm::ivec2 LightFieldOutput::native_size() const {
   return quilt() ? glm::ivec2(display_.quilt.calibration.screen_width, display_.quilt.calibration.screen_height) : glm::ivec2(0);
 }
 
-int LightFieldOutput::rendered_views() const { return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false)); }
+int LightFieldOutput::rendered_views() const {
+  return static_cast<int>(std::count(skipped_.begin(), skipped_.end(), false));
+}
 
 void LightFieldOutput::render(const OutputFrame& frame) {
   const float fade = frame.fade;
@@ -235,7 +238,8 @@ void LightFieldOutput::present(const OutputFrame&, const PresentTarget& target, 
     gl::api.BindVertexArray(0);
   } else {
     gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, quilt() ? native_fbo_.id() : output_fbo_.id());
-    gl::api.BlitFramebuffer(0, 0, source.x, source.y, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, w == source.x ? GL_NEAREST : GL_LINEAR);
+    gl::api.BlitFramebuffer(0, 0, source.x, source.y, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
+                            w == source.x ? GL_NEAREST : GL_LINEAR);
     gl::api.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   }
   gl::api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -285,6 +289,8 @@ bool LightFieldRenderer::configure(const lightfield::Display& display, const Fra
   return true;
 }
 
-void LightFieldRenderer::render() { output_.render(OutputFrame{scene_, 1.0f, nullptr, &gl_error_}); }
+void LightFieldRenderer::render() {
+  output_.render(OutputFrame{scene_, 1.0f, nullptr, &gl_error_});
+}
 
 }  // namespace render

@@ -7,7 +7,9 @@ bool ViewOutput::configure(const FrameSettings& settings, const SceneGpu& scene,
   return targets_.configure(programs_, caps_, settings, scene.radius(), srgb_target, error);
 }
 
-void ViewOutput::render(const OutputFrame& frame) { draw_view(context(frame)); }
+void ViewOutput::render(const OutputFrame& frame) {
+  draw_view(context(frame));
+}
 
 void ViewOutput::present(const OutputFrame& frame, const PresentTarget& target, int, int) {
   present_pass(context(frame), target, frame.fade);

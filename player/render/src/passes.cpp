@@ -13,21 +13,29 @@ namespace render {
 using detail::bind_texture;
 using detail::groups;
 
-std::string_view pass_name(int pass) {
+std::string_view pass_name(Pass pass) {
   switch (pass) {
-    case kDepthPrepass: return "depth prepass";
-    case kGBuffer: return "g-buffer";
-    case kDepthChain: return "depth chain";
-    case kSsao: return "ssao";
-    case kTemporal: return "temporal";
-    case kBlurH: return "blur horizontal";
-    case kBlurV: return "blur vertical";
-    case kPresent: return "present";
-    default: return "?";
+    case Pass::depth_prepass:
+      return "depth prepass";
+    case Pass::gbuffer:
+      return "g-buffer";
+    case Pass::depth_chain:
+      return "depth chain";
+    case Pass::ssao:
+      return "ssao";
+    case Pass::temporal:
+      return "temporal";
+    case Pass::blur_h:
+      return "blur horizontal";
+    case Pass::blur_v:
+      return "blur vertical";
+    case Pass::present:
+      return "present";
   }
+  return "?";
 }
 
-void PassContext::finish_pass(int pass) const {
+void PassContext::finish_pass(Pass pass) const {
   if (gl_error != nullptr && targets.settings().check_errors) {
     const GLenum status = gl::api.GetError();
     if (status != GL_NO_ERROR && gl_error->empty()) {
@@ -36,7 +44,7 @@ void PassContext::finish_pass(int pass) const {
       *gl_error = text;  // only the first error is kept; its capacity suffices after the first frame
     }
   }
-  if (timer != nullptr) timer->mark(pass);
+  if (timer != nullptr) timer->mark(static_cast<int>(pass));
 }
 
 namespace {
@@ -77,8 +85,10 @@ void draw_scene(const PassContext& context, bool depth_only) {
                                                     : programs.white.id());
       }
     }
-    if (material.double_sided) gl::api.Disable(GL_CULL_FACE);
-    else gl::api.Enable(GL_CULL_FACE);
+    if (material.double_sided)
+      gl::api.Disable(GL_CULL_FACE);
+    else
+      gl::api.Enable(GL_CULL_FACE);
     const SceneGpu::Mesh& mesh = scene.meshes()[static_cast<size_t>(draw.mesh)];
     gl::api.BindVertexArray(mesh.vao.id());
     gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
@@ -121,7 +131,7 @@ void accumulate(const PassContext& context, bool moved) {
   gl::api.DispatchCompute(groups(targets.ao_width(), SSAO_GROUP_SIZE), groups(targets.ao_height(), SSAO_GROUP_SIZE), 1);
   gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   targets.history_current = next;
-  context.finish_pass(kTemporal);
+  context.finish_pass(Pass::temporal);
 }
 
 }  // namespace
@@ -132,7 +142,7 @@ void depth_prepass(const PassContext& context) {
   gl::api.DepthFunc(GL_LESS);
   draw_scene(context, true);
   gl::api.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  context.finish_pass(kDepthPrepass);
+  context.finish_pass(Pass::depth_prepass);
 }
 
 void gbuffer_pass(const PassContext& context, bool after_prepass) {
@@ -154,7 +164,7 @@ void gbuffer_pass(const PassContext& context, bool after_prepass) {
   // identical runs of 16 frames differed). Any glMemoryBarrier makes llvmpipe wait; elsewhere it
   // costs no more than the wait the dispatch needs anyway.
   gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-  context.finish_pass(kGBuffer);
+  context.finish_pass(Pass::gbuffer);
 }
 
 bool ao_passes(const PassContext& context) {
@@ -166,7 +176,8 @@ bool ao_passes(const PassContext& context) {
   // module's AO is computed anew.
   const bool temporal = targets.temporal();
   const bool still = targets.have_ao && view.view == targets.ao_view && view.projection == targets.ao_projection;
-  targets.reused_ao = settings.reuse_static_ao && !view.module && still && (!temporal || targets.still_frames >= settings.history);
+  targets.reused_ao =
+      settings.reuse_static_ao && !view.module && still && (!temporal || targets.still_frames >= settings.history);
   if (targets.reused_ao) return false;
   const int w = settings.width, h = settings.height;
   const int ao_w = targets.ao_width(), ao_h = targets.ao_height();
@@ -198,10 +209,11 @@ bool ao_passes(const PassContext& context) {
     for (int level = 1; level <= deepest; ++level) {
       gl::api.Uniform1i(context.programs.depth_chain_source_level, level - 1);
       gl::api.BindImageTexture(0, targets.linear_depth.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-      gl::api.DispatchCompute(groups(std::max(w >> level, 1), SSAO_GROUP_SIZE), groups(std::max(h >> level, 1), SSAO_GROUP_SIZE), 1);
+      gl::api.DispatchCompute(groups(std::max(w >> level, 1), SSAO_GROUP_SIZE), groups(std::max(h >> level, 1), SSAO_GROUP_SIZE),
+                              1);
       gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    context.finish_pass(kDepthChain);
+    context.finish_pass(Pass::depth_chain);
   }
 
   detail::update_uniform_buffer(targets.ssao_ubo, &params, sizeof params);
@@ -217,7 +229,7 @@ bool ao_passes(const PassContext& context) {
   gl::api.BindImageTexture(0, targets.ao_raw.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl::api.DispatchCompute(groups(ao_w, SSAO_GROUP_SIZE), groups(ao_h, SSAO_GROUP_SIZE), 1);
   gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  context.finish_pass(kSsao);
+  context.finish_pass(Pass::ssao);
 
   if (temporal) accumulate(context, !still);
 
@@ -234,10 +246,12 @@ bool ao_passes(const PassContext& context) {
       bind_texture(0, *sources[direction]);
       gl::api.BindImageTexture(0, destinations[direction]->id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
       // A work group per run of pixels along the blur direction: x counts runs, y counts lines.
-      if (direction == 0) gl::api.DispatchCompute(groups(ao_w, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_h), 1);
-      else gl::api.DispatchCompute(groups(ao_h, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_w), 1);
+      if (direction == 0)
+        gl::api.DispatchCompute(groups(ao_w, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_h), 1);
+      else
+        gl::api.DispatchCompute(groups(ao_h, BLUR_GROUP_SIZE), static_cast<GLuint>(ao_w), 1);
       gl::api.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-      context.finish_pass(direction == 0 ? kBlurH : kBlurV);
+      context.finish_pass(direction == 0 ? Pass::blur_h : Pass::blur_v);
     }
   }
   targets.still_frames = still ? std::min(targets.still_frames + 1, settings.history) : 1;
@@ -275,7 +289,7 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   // orders image stores after the texture fetches issued before it: without it, frames after the
   // first came out different from run to run.
   gl::api.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  context.finish_pass(kPresent);
+  context.finish_pass(Pass::present);
 }
 
 void draw_view(const PassContext& context) {
@@ -286,8 +300,12 @@ void draw_view(const PassContext& context) {
     detail::update_uniform_buffer(targets.module_ubo, &params, sizeof params);
   }
   switch (settings.prepass) {
-    case Prepass::on: targets.prepass_now = true; break;
-    case Prepass::off: targets.prepass_now = false; break;
+    case Prepass::on:
+      targets.prepass_now = true;
+      break;
+    case Prepass::off:
+      targets.prepass_now = false;
+      break;
     case Prepass::automatic:  // first frame with, second without, then the faster of the two
       targets.prepass_now = targets.raster_with < 0.0      ? true
                             : targets.raster_without < 0.0 ? false
@@ -296,8 +314,10 @@ void draw_view(const PassContext& context) {
   }
   if (targets.prepass_now) depth_prepass(context);
   gbuffer_pass(context, targets.prepass_now);
-  if (settings.ao) ao_passes(context);
-  else targets.reused_ao = false;
+  if (settings.ao)
+    ao_passes(context);
+  else
+    targets.reused_ao = false;
 }
 
 void render_view(const PassContext& context, const PresentTarget& target, float fade) {

@@ -22,8 +22,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
 // bound to units in the order given.
 const gl::Program* build_fullscreen(gl::ProgramCache& cache, const char* fragment, const std::string& defines,
                                     std::initializer_list<const char*> samplers, std::string& error) {
-  const gl::Program* program =
-      cache.get({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
+  const gl::Program* program = cache.get({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
   if (program != nullptr) detail::assign_units(*program, samplers);
   return program;
 }
@@ -48,8 +47,10 @@ bool Programs::build(gl::Session& session, std::string& error) {
       !(upsample = build_compute(cache, "upsample.comp", "", {"u_ao", "u_linear_depth", "u_normal"}, error)) ||
       !(blur_gaussian = build_compute(cache, "blur.comp", "", {"u_source"}, error)) ||
       !(blur_bilateral = build_compute(cache, "blur.comp", "#define BILATERAL 1\n", {"u_source"}, error)) ||
-      !(blur_denoise = build_compute(cache, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", {"u_source", "u_normal"}, error)) ||
-      !(temporal = build_compute(cache, "temporal.comp", "", {"u_current", "u_normal", "u_history", "u_history_normal"}, error)) ||
+      !(blur_denoise =
+            build_compute(cache, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", {"u_source", "u_normal"}, error)) ||
+      !(temporal =
+            build_compute(cache, "temporal.comp", "", {"u_current", "u_normal", "u_history", "u_history_normal"}, error)) ||
       !present(Picture::color, true, error) || !present(Picture::color, false, error))
     return false;
   depth_chain_source_level = gl::uniform(*depth_chain, "u_source_level");
@@ -71,8 +72,8 @@ bool Programs::build(gl::Session& session, std::string& error) {
 const gl::Program* Programs::present(Picture output, bool srgb, std::string& error) {
   const gl::Program*& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0];
   if (program == nullptr) {
-    const std::string defines = "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" +
-                                (srgb ? "" : "#define ENCODE_SRGB 1\n");
+    const std::string defines =
+        "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" + (srgb ? "" : "#define ENCODE_SRGB 1\n");
     program = build_fullscreen(*cache_, "present.frag", defines, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"}, error);
     gl::api.UseProgram(0);
   }
@@ -84,8 +85,9 @@ const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision pre
   const gl::Program*& program = ssao_[kind][index(estimator)][index(precision)];
   if (program == nullptr) {
     if (modules && estimator == ssao::Estimator::horizon) {
-      error = "estimator: horizon searches screen-space slices and has no light field form; a modules display takes "
-              "sphere or hemisphere";
+      error =
+          "estimator: horizon searches screen-space slices and has no light field form; a modules display takes "
+          "sphere or hemisphere";
       return nullptr;
     }
     const std::string defines = "#define ESTIMATOR " + std::to_string(static_cast<int>(estimator)) + "\n" +

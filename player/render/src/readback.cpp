@@ -37,7 +37,8 @@ std::vector<glm::vec3> read_normal_pair(const ViewTargets& targets, int first_ch
   const std::vector<float> rgba = read_rgba_float(targets.normal, targets.settings().width, targets.settings().height);
   std::vector<glm::vec3> normals(rgba.size() / 4);
   for (size_t i = 0; i < normals.size(); ++i)
-    normals[i] = octahedron_decode(rgba[i * 4 + static_cast<size_t>(first_channel)], rgba[i * 4 + static_cast<size_t>(first_channel) + 1]);
+    normals[i] =
+        octahedron_decode(rgba[i * 4 + static_cast<size_t>(first_channel)], rgba[i * 4 + static_cast<size_t>(first_channel) + 1]);
   return normals;
 }
 
@@ -63,8 +64,12 @@ std::vector<float> read_linear_depth(const ViewTargets& targets) {
   return depth;
 }
 
-std::vector<glm::vec3> read_view_normals(const ViewTargets& targets) { return read_normal_pair(targets, 0); }
-std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets) { return read_normal_pair(targets, 2); }
+std::vector<glm::vec3> read_view_normals(const ViewTargets& targets) {
+  return read_normal_pair(targets, 0);
+}
+std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets) {
+  return read_normal_pair(targets, 2);
+}
 
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int w, int h) {
   const std::vector<float> rgba = read_rgba_float(texture, w, h);

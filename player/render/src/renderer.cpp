@@ -12,11 +12,11 @@ PassTimes to_pass_times(const gl::FrameTimer::Times& times, bool gpu_timed) {
 }
 
 void note_raster_time(ViewTargets& targets, const PassTimes& times) {
-  if (targets.settings().prepass != Prepass::automatic || times.ms[kGBuffer] < 0.0) return;
+  if (targets.settings().prepass != Prepass::automatic || times[Pass::gbuffer] < 0.0) return;
   // Times arrive frames late; whether that frame drew the prepass is in the times themselves.
-  const bool with_prepass = times.ms[kDepthPrepass] >= 0.0;
+  const bool with_prepass = times[Pass::depth_prepass] >= 0.0;
   double& slot = with_prepass ? targets.raster_with : targets.raster_without;
-  if (slot < 0.0) slot = std::max(0.0, times.ms[kDepthPrepass]) + times.ms[kGBuffer];
+  if (slot < 0.0) slot = std::max(0.0, times[Pass::depth_prepass]) + times[Pass::gbuffer];
 }
 
 bool Renderer::init(gl::Session& session, const PresentTarget& target, std::string& error, bool serialise_timing) {
@@ -27,7 +27,9 @@ bool Renderer::init(gl::Session& session, const PresentTarget& target, std::stri
   return true;
 }
 
-bool Renderer::upload(const scene::Scene& scene, std::string& error) { return scene_.upload(scene, caps_, error); }
+bool Renderer::upload(const scene::Scene& scene, std::string& error) {
+  return scene_.upload(scene, caps_, error);
+}
 
 bool Renderer::configure(const FrameSettings& settings, std::string& error) {
   gl_error_.clear();
@@ -57,12 +59,16 @@ std::vector<uint8_t> Renderer::read_color() const {
   return read_presented(target_, settings().width, settings().height);
 }
 
-std::vector<glm::vec2> Renderer::read_ao_raw() const { return read_ao(targets().ao_raw, targets().ao_width(), targets().ao_height()); }
+std::vector<glm::vec2> Renderer::read_ao_raw() const {
+  return read_ao(targets().ao_raw, targets().ao_width(), targets().ao_height());
+}
 
 std::vector<glm::vec2> Renderer::read_ao_blurred() const {
   return read_ao(targets().ao_result(), targets().ao_width(), targets().ao_height());
 }
 
-std::vector<glm::vec2> Renderer::read_ao_final() const { return read_ao_full(programs_, targets()); }
+std::vector<glm::vec2> Renderer::read_ao_final() const {
+  return read_ao_full(programs_, targets());
+}
 
 }  // namespace render

@@ -16,7 +16,8 @@ bool Rotation::configure(Programs& programs, int degrees, int surface_width, int
   if (!valid_rotation(degrees, error)) return false;
   const bool quarter = degrees == 90 || degrees == 270;
   const int width = quarter ? surface_height : surface_width, height = quarter ? surface_width : surface_height;
-  if (degrees == degrees_ && width == width_ && height == height_ && surface_srgb == srgb_ && (degrees == 0 || texture_)) return true;
+  if (degrees == degrees_ && width == width_ && height == height_ && surface_srgb == srgb_ && (degrees == 0 || texture_))
+    return true;
   degrees_ = degrees;
   width_ = width;
   height_ = height;

@@ -10,8 +10,12 @@ namespace {
 // The smallest slice worth a call: below this the per-call overhead dominates.
 constexpr size_t kMinSlice = 64 * 1024;
 
-size_t vertex_bytes(const scene::Mesh& mesh) { return mesh.vertices.size() * sizeof(scene::Vertex); }
-size_t index_bytes(const scene::Mesh& mesh) { return mesh.indices.size() * sizeof(uint32_t); }
+size_t vertex_bytes(const scene::Mesh& mesh) {
+  return mesh.vertices.size() * sizeof(scene::Vertex);
+}
+size_t index_bytes(const scene::Mesh& mesh) {
+  return mesh.indices.size() * sizeof(uint32_t);
+}
 
 SceneGpu::Mesh allocate_mesh(const scene::Mesh& mesh) {
   SceneGpu::Mesh gpu;
@@ -101,15 +105,16 @@ bool SceneGpu::step(size_t budget_bytes) {
       const size_t rows = std::min(static_cast<size_t>(source.height) - offset_, std::max<size_t>(1, slice / row_bytes));
       gl::api.BindTexture(GL_TEXTURE_2D, textures_.back().id());
       gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, static_cast<GLint>(offset_), source.width, static_cast<GLsizei>(rows),
-                            GL_RGBA, GL_UNSIGNED_BYTE, source.rgba.data() + offset_ * row_bytes);
+      gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, static_cast<GLint>(offset_), source.width, static_cast<GLsizei>(rows), GL_RGBA,
+                            GL_UNSIGNED_BYTE, source.rgba.data() + offset_ * row_bytes);
       spent += rows * row_bytes;
       offset_ += rows;
       if (offset_ >= static_cast<size_t>(source.height)) {
         const int levels = mip_levels(source);
         if (levels > 1) gl::api.GenerateMipmap(GL_TEXTURE_2D);
         gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-        gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, source.mag == scene::Filter::nearest ? GL_NEAREST : GL_LINEAR);
+        gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER,
+                              source.mag == scene::Filter::nearest ? GL_NEAREST : GL_LINEAR);
         gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, source.repeat_s ? GL_REPEAT : GL_CLAMP_TO_EDGE);
         gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, source.repeat_t ? GL_REPEAT : GL_CLAMP_TO_EDGE);
         gl::api.BindTexture(GL_TEXTURE_2D, 0);

@@ -7,9 +7,13 @@
 
 namespace scene {
 
-glm::dmat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+glm::dmat4 Camera::view() const {
+  return glm::lookAt(eye, target, up);
+}
 
-glm::dmat4 Camera::projection() const { return glm::perspective(fov_y, aspect, near, far); }
+glm::dmat4 Camera::projection() const {
+  return glm::perspective(fov_y, aspect, near, far);
+}
 
 Camera frame(const Bounds& bounds, const Framing& framing, int width, int height) {
   Camera camera;

@@ -9,12 +9,16 @@ namespace scene::gltf {
 size_t component_size(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -64,8 +68,7 @@ View checked_view(const tinygltf::Model& model, int index, const std::string& fi
   // glTF 2.0, 3.6.2.4: every component starts at a multiple of its size.
   if ((buffer_view.byteOffset + accessor.byteOffset) % component_size(accessor.componentType) != 0)
     fail(where + ": starts at byte " + std::to_string(buffer_view.byteOffset + accessor.byteOffset) +
-         " of its buffer; expected a multiple of the component size " +
-         std::to_string(component_size(accessor.componentType)));
+         " of its buffer; expected a multiple of the component size " + std::to_string(component_size(accessor.componentType)));
   // count <= kMaxElements and stride <= 252 (schema-checked) keep the product far from overflow;
   // the offset is compared first so the sum cannot wrap either.
   if (accessor.byteOffset > buffer_view.byteLength)
@@ -73,8 +76,7 @@ View checked_view(const tinygltf::Model& model, int index, const std::string& fi
          std::to_string(buffer_view.byteLength) + " bytes");
   const size_t span = accessor.byteOffset + view.stride * (accessor.count - 1) + element;
   if (span > buffer_view.byteLength)
-    fail(where + ": needs " + std::to_string(span) + " bytes but its buffer view has " +
-         std::to_string(buffer_view.byteLength));
+    fail(where + ": needs " + std::to_string(span) + " bytes but its buffer view has " + std::to_string(buffer_view.byteLength));
   view.data = buffer.data.data() + buffer_view.byteOffset + accessor.byteOffset;
   return view;
 }
@@ -88,15 +90,21 @@ double component(const View& view, size_t element, int c) {
     return value;
   };
   switch (view.component_type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return read(float{});
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return view.normalized ? read(uint8_t{}) / 255.0 : read(uint8_t{});
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return view.normalized ? read(uint16_t{}) / 65535.0 : read(uint16_t{});
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return read(uint32_t{});
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return view.normalized ? std::max(read(int8_t{}) / 127.0, -1.0) : read(int8_t{});
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return view.normalized ? std::max(read(int16_t{}) / 32767.0, -1.0) : read(int16_t{});
-    default: return 0.0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return read(float{});
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return view.normalized ? read(uint8_t{}) / 255.0 : read(uint8_t{});
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return view.normalized ? read(uint16_t{}) / 65535.0 : read(uint16_t{});
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return read(uint32_t{});
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return view.normalized ? std::max(read(int8_t{}) / 127.0, -1.0) : read(int8_t{});
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return view.normalized ? std::max(read(int16_t{}) / 32767.0, -1.0) : read(int16_t{});
+    default:
+      return 0.0;
   }
 }
-
 
 }  // namespace scene::gltf

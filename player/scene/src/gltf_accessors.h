@@ -21,7 +21,9 @@ struct LoadError {
   std::string message;
 };
 
-[[noreturn]] inline void fail(const std::string& message) { throw LoadError{message}; }
+[[noreturn]] inline void fail(const std::string& message) {
+  throw LoadError{message};
+}
 
 size_t component_size(int type);
 
@@ -53,8 +55,8 @@ std::vector<glm::vec<N, float>> read_floats(const tinygltf::Model& model, int in
     for (int c = 0; c < N; ++c) {
       const double value = component(view, i, c);
       if (!std::isfinite(value) || std::abs(value) > 3.0e38)
-        fail(field + ": element " + std::to_string(i) + " component " + std::to_string(c) + " is " +
-             std::to_string(value) + ", expected a finite number");
+        fail(field + ": element " + std::to_string(i) + " component " + std::to_string(c) + " is " + std::to_string(value) +
+             ", expected a finite number");
       values[i][c] = static_cast<float>(value);
     }
   return values;

@@ -79,8 +79,8 @@ class Builder {
     std::vector<char> on_path(model_.nodes.size(), 0), seen(model_.nodes.size(), 0);
     auto enter = [&](int index, const glm::dmat4& parent, const std::string& field) {
       if (index < 0 || static_cast<size_t>(index) >= model_.nodes.size())
-        fail(field + ": node index " + std::to_string(index) + " out of range (there are " +
-             std::to_string(model_.nodes.size()) + ")");
+        fail(field + ": node index " + std::to_string(index) + " out of range (there are " + std::to_string(model_.nodes.size()) +
+             ")");
       const size_t at = static_cast<size_t>(index);
       if (on_path[at]) fail("nodes[" + std::to_string(index) + "].children: the node hierarchy has a cycle through this node");
       if (seen[at]) fail("nodes[" + std::to_string(index) + "]: the node has more than one parent (glTF requires a tree)");
@@ -138,8 +138,8 @@ class Builder {
   Mesh convert(const tinygltf::Primitive& primitive, const std::string& where) {
     const auto position_at = primitive.attributes.find("POSITION");
     if (position_at == primitive.attributes.end()) fail(where + ".attributes: POSITION is required");
-    const auto positions = read_floats<3>(model_, position_at->second, where + ".attributes.POSITION",
-                                          {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    const auto positions =
+        read_floats<3>(model_, position_at->second, where + ".attributes.POSITION", {TINYGLTF_COMPONENT_TYPE_FLOAT});
     const size_t vertex_count = positions.size();
 
     // glTF 2.0, 3.7.2.1: all attribute accessors of a primitive have the same count; checked for the
@@ -157,17 +157,18 @@ class Builder {
     }
     std::vector<glm::vec2> uvs;
     if (auto at = primitive.attributes.find("TEXCOORD_0"); at != primitive.attributes.end()) {
-      uvs = read_floats<2>(model_, at->second, where + ".attributes.TEXCOORD_0",
-                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+      uvs = read_floats<2>(
+          model_, at->second, where + ".attributes.TEXCOORD_0",
+          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
       if (uvs.size() != vertex_count) fail(where + ".attributes.TEXCOORD_0: count differs from POSITION's");
     }
 
     std::vector<uint32_t> indices;
     if (primitive.indices >= 0) {
-      const View view = checked_view(model_, primitive.indices, where + ".indices",
-                                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}, 1);
+      const View view = checked_view(
+          model_, primitive.indices, where + ".indices",
+          {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+          1);
       indices.resize(view.count);
       for (size_t i = 0; i < view.count; ++i) {
         const double value = component(view, i, 0);
@@ -234,8 +235,8 @@ class Builder {
   int material(int index, const std::string& where) {
     if (index < 0) return 0;
     if (static_cast<size_t>(index) >= model_.materials.size())
-      fail(where + ".material: " + std::to_string(index) + " out of range (there are " +
-           std::to_string(model_.materials.size()) + ")");
+      fail(where + ".material: " + std::to_string(index) + " out of range (there are " + std::to_string(model_.materials.size()) +
+           ")");
     if (auto found = materials_.find(index); found != materials_.end()) return found->second;
     const tinygltf::Material& source = model_.materials[static_cast<size_t>(index)];
     const std::string field = "materials[" + std::to_string(index) + "]";
@@ -280,7 +281,8 @@ class Builder {
       const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(source.sampler)];
       texture.mag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::nearest : Filter::linear;
       // Absent or outside its list (the schema check warned), minFilter means the default: mipmapped.
-      texture.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+      texture.mipmaps =
+          sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
       texture.repeat_s = sampler.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
       texture.repeat_t = sampler.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
     } else if (source.sampler >= 0) {

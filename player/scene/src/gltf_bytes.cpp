@@ -45,7 +45,9 @@ bool confined_exists(const std::string& path, void*) {
   return fs::is_regular_file(path, ec);
 }
 
-std::string confined_expand(const std::string& path, void*) { return path; }
+std::string confined_expand(const std::string& path, void*) {
+  return path;
+}
 
 bool confined_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   const auto* confinement = static_cast<Confinement*>(user);
@@ -76,8 +78,7 @@ std::string split_glb(const std::string& bytes, Glb& out, std::vector<std::strin
   if (const uint32_t version = u32_at(bytes, 4); version != 2)
     return "GLB header version " + std::to_string(version) + "; expected 2";
   if (const uint32_t length = u32_at(bytes, 8); length != bytes.size())
-    return "GLB header length " + std::to_string(length) + " differs from the file's " + std::to_string(bytes.size()) +
-           " bytes";
+    return "GLB header length " + std::to_string(length) + " differs from the file's " + std::to_string(bytes.size()) + " bytes";
   size_t at = 12;
   bool has_json = false;
   for (int chunk = 0; at < bytes.size(); ++chunk) {
@@ -109,7 +110,6 @@ std::string split_glb(const std::string& bytes, Glb& out, std::vector<std::strin
   return {};
 }
 
-
 std::string join_glb(const Glb& glb) {
   std::string json = glb.json;
   while (json.size() % 4) json += ' ';
@@ -137,9 +137,12 @@ std::string nesting_problem(const std::string& text) {
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {

@@ -15,8 +15,8 @@ namespace scene::gltf {
 // error: ..." itself, so PNG goes through libpng's simplified API, which keeps every message in
 // png_image::message; OpenImageIO's JPEG reader routes libjpeg's messages to its own error, which
 // is read and dropped. Either way the one line is ours.
-bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
-                const unsigned char* bytes, int size, void* user) {
+bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,
+                int size, void* user) {
   auto& context = *static_cast<ImageContext*>(user);
   auto skip = [&](const std::string& what) {
     context.problems[index] = what;

@@ -20,10 +20,10 @@
 // (bounds-checked reads), gltf_builder (the Scene). This file runs them in order.
 namespace scene {
 namespace fs = std::filesystem;
-using nlohmann::json;
 using gltf::Confinement;
 using gltf::Glb;
 using gltf::ImageContext;
+using nlohmann::json;
 
 bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadOptions& options) {
   report = LoadReport{};
@@ -46,7 +46,9 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     if (!in) return refuse("cannot open the file");
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  if (bytes.empty()) return refuse("not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 " + std::string(binary ? "binary" : "JSON"));
+  if (bytes.empty())
+    return refuse("not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 " +
+                  std::string(binary ? "binary" : "JSON"));
   Glb glb;
   if (binary) {
     // Layout and nesting problems keep the "not a valid glTF" of a parse error: the file is not

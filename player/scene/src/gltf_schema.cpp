@@ -28,8 +28,8 @@ class SchemaCheck {
   std::string run() {
     if (!root_.is_object()) return "the top level: expected a JSON object";
     asset();
-    for (const char* name : {"accessors", "bufferViews", "buffers", "images", "materials", "meshes", "nodes", "samplers",
-                             "scenes", "textures"})
+    for (const char* name :
+         {"accessors", "bufferViews", "buffers", "images", "materials", "meshes", "nodes", "samplers", "scenes", "textures"})
       objects(name);
     if (!problem_.empty()) return problem_;
     index(root_, "scene", "scene", "scenes");
@@ -93,13 +93,12 @@ class SchemaCheck {
       const json& buffer = root_["buffers"][view["buffer"].get<size_t>()];
       if (buffer.contains("byteLength") && buffer["byteLength"].is_number_integer() &&
           offset + length > buffer["byteLength"].get<int64_t>())
-        fail_once(at + ": bytes " + std::to_string(offset) + ".." + std::to_string(offset + length) +
-                  " lie beyond buffers[" + std::to_string(view["buffer"].get<size_t>()) + "].byteLength " +
+        fail_once(at + ": bytes " + std::to_string(offset) + ".." + std::to_string(offset + length) + " lie beyond buffers[" +
+                  std::to_string(view["buffer"].get<size_t>()) + "].byteLength " +
                   std::to_string(buffer["byteLength"].get<int64_t>()));
     });
-    each("buffers", [&](const json& buffer, const std::string& at) {
-      integer(buffer, "byteLength", at, 1, kMaxSafeInteger, true);
-    });
+    each("buffers",
+         [&](const json& buffer, const std::string& at) { integer(buffer, "byteLength", at, 1, kMaxSafeInteger, true); });
     each("images", [&](const json& image, const std::string& at) { index(image, "bufferView", at, "bufferViews"); });
     each("textures", [&](const json& texture, const std::string& at) {
       index(texture, "sampler", at, "samplers");
@@ -151,8 +150,7 @@ class SchemaCheck {
     if (version == found->end()) return fail_once("asset.version: missing; expected \"2.0\"");
     if (!parse(*version, major, minor))
       return fail_once("asset.version: " + brief(*version) + " is not a version; expected \"2.0\"");
-    if (major != 2)
-      return fail_once("asset.version: " + brief(*version) + " is not glTF 2; expected \"2.0\" (or another 2.x)");
+    if (major != 2) return fail_once("asset.version: " + brief(*version) + " is not glTF 2; expected \"2.0\" (or another 2.x)");
     if (const auto min_version = found->find("minVersion"); min_version != found->end()) {
       int min_major = 0, min_minor = 0;
       if (!parse(*min_version, min_major, min_minor))
@@ -306,8 +304,10 @@ std::string uri_problem(const json& root) {
         return field + ": '" + uri + "' is an absolute path; expected a path relative to the scene's folder";
       int depth = 0;
       for (const fs::path& part : path) {
-        if (part == "..") --depth;
-        else if (part != "." && !part.empty()) ++depth;
+        if (part == "..")
+          --depth;
+        else if (part != "." && !part.empty())
+          ++depth;
         if (depth < 0) return field + ": '" + uri + "' escapes the scene's folder";
       }
     }

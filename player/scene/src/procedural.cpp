@@ -28,8 +28,10 @@ Material solid(glm::vec3 colour) {
 Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, int material) {
   Mesh mesh;
   const glm::vec3 normal = glm::normalize(glm::cross(edge_u, edge_v));
-  mesh.vertices = {{corner, normal, {0, 0}}, {corner + edge_u, normal, {1, 0}},
-                   {corner + edge_u + edge_v, normal, {1, 1}}, {corner + edge_v, normal, {0, 1}}};
+  mesh.vertices = {{corner, normal, {0, 0}},
+                   {corner + edge_u, normal, {1, 0}},
+                   {corner + edge_u + edge_v, normal, {1, 1}},
+                   {corner + edge_v, normal, {0, 1}}};
   mesh.indices = {0, 1, 2, 0, 2, 3};
   mesh.material = material;
   finish(mesh);
@@ -42,9 +44,8 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, int material) {
   const glm::vec3 size = hi - lo;
   const glm::vec3 x(size.x, 0, 0), y(0, size.y, 0), z(0, 0, size.z);
   // Six faces, each wound counter-clockwise seen from outside.
-  const Mesh faces[] = {make_quad(lo, y, x, material),         make_quad(lo + z, x, y, material),
-                        make_quad(lo, z, y, material),         make_quad(lo + x, y, z, material),
-                        make_quad(lo, x, z, material),         make_quad(lo + y, z, x, material)};
+  const Mesh faces[] = {make_quad(lo, y, x, material),     make_quad(lo + z, x, y, material), make_quad(lo, z, y, material),
+                        make_quad(lo + x, y, z, material), make_quad(lo, x, z, material),     make_quad(lo + y, z, x, material)};
   for (const Mesh& face : faces) {
     const auto base = static_cast<uint32_t>(mesh.vertices.size());
     mesh.vertices.insert(mesh.vertices.end(), face.vertices.begin(), face.vertices.end());
@@ -82,7 +83,9 @@ void add_instance(Scene& scene, Mesh mesh, const glm::dmat4& world) {
   scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, world});
 }
 
-std::vector<std::string> builtin_names() { return {"demo", "plane", "corner", "spheres"}; }
+std::vector<std::string> builtin_names() {
+  return {"demo", "plane", "corner", "spheres"};
+}
 
 std::optional<Scene> make_builtin(std::string_view name) {
   Scene scene;

@@ -8,10 +8,18 @@
 
 namespace ssao {
 
-std::string_view name(Blur blur) { return names::name_of<Blur>(kBlurNames, blur); }
-std::optional<Blur> parse_blur(std::string_view text) { return names::parse<Blur>(kBlurNames, text); }
-std::string_view name(Precision precision) { return names::name_of<Precision>(kPrecisionNames, precision); }
-std::optional<Precision> parse_precision(std::string_view text) { return names::parse<Precision>(kPrecisionNames, text); }
+std::string_view name(Blur blur) {
+  return names::name_of<Blur>(kBlurNames, blur);
+}
+std::optional<Blur> parse_blur(std::string_view text) {
+  return names::parse<Blur>(kBlurNames, text);
+}
+std::string_view name(Precision precision) {
+  return names::name_of<Precision>(kPrecisionNames, precision);
+}
+std::optional<Precision> parse_precision(std::string_view text) {
+  return names::parse<Precision>(kPrecisionNames, text);
+}
 
 int horizon_steps(const AoSettings& settings) {
   const int samples = std::clamp(settings.samples, 1, SSAO_MAX_SAMPLES);
@@ -40,8 +48,7 @@ shared_layout::SsaoParams pack_ssao_params(const AoSettings& settings, float bas
   const std::span<const glm::vec3> points = kernel(settings.estimator, settings.pattern, samples);
   for (int i = 0; i < samples; ++i) params.kernel[i] = glm::vec4(points[static_cast<size_t>(i)], 0.0f);
   const std::span<const float> angles = rotation_angles();
-  for (size_t i = 0; i < angles.size(); ++i)
-    params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.5f, 0.0f);
+  for (size_t i = 0; i < angles.size(); ++i) params.rotation[i] = glm::vec4(std::cos(angles[i]), std::sin(angles[i]), 0.5f, 0.0f);
   return params;
 }
 
@@ -65,8 +72,8 @@ void advance_frame(shared_layout::SsaoParams& params, unsigned frame) {
     const double entries = static_cast<double>(angles.size());
     const double tap_offset = (static_cast<double>((i * 7 + 3) % angles.size()) + 0.5) / entries;
     const double tap_jitter = std::fmod(tap_share + tap_offset, 1.0);
-    params.rotation[i] = glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)),
-                                   static_cast<float>(tap_jitter), 0.0f);
+    params.rotation[i] =
+        glm::vec4(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)), static_cast<float>(tap_jitter), 0.0f);
   }
 }
 

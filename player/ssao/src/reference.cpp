@@ -12,9 +12,9 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kUpsampleDepthTolerance = 0.05f;  // upsample.glsl's UPSAMPLE_DEPTH_TOLERANCE
-constexpr float kHorizonFadeEnd = 2.0f;        // ssao.comp's HORIZON_FADE_END
-constexpr float kHorizonNearTapPixels = 1.6f;  // ssao.comp's HORIZON_NEAR_TAP_PIXELS
-constexpr float kHorizonElevationCap = 20.0f;  // ssao.comp's HORIZON_ELEVATION_CAP
+constexpr float kHorizonFadeEnd = 2.0f;           // ssao.comp's HORIZON_FADE_END
+constexpr float kHorizonNearTapPixels = 1.6f;     // ssao.comp's HORIZON_NEAR_TAP_PIXELS
+constexpr float kHorizonElevationCap = 20.0f;     // ssao.comp's HORIZON_ELEVATION_CAP
 
 // ssao.comp's tap_distance_pixels.
 float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter) {
@@ -25,7 +25,9 @@ float tap_distance_pixels(int step, int steps, float radius_pixels, float jitter
   return std::max((static_cast<float>(step) + jitter - 0.5f) * spacing, static_cast<float>(step));
 }
 
-float to_half(float value) { return glm::unpackHalf1x16(glm::packHalf1x16(value)); }
+float to_half(float value) {
+  return glm::unpackHalf1x16(glm::packHalf1x16(value));
+}
 
 // common.glsl's view_position_at: the view-space point at `depth` behind the centre of `pixel`.
 glm::vec3 view_position_at(glm::ivec2 pixel, float depth, glm::vec4 unproject, glm::ivec2 size) {
@@ -33,9 +35,13 @@ glm::vec3 view_position_at(glm::ivec2 pixel, float depth, glm::vec4 unproject, g
   return {(ndc.x + unproject.z) * depth * unproject.x, (ndc.y + unproject.w) * depth * unproject.y, -depth};
 }
 
-size_t index(glm::ivec2 p, int width) { return static_cast<size_t>(p.y) * static_cast<size_t>(width) + static_cast<size_t>(p.x); }
+size_t index(glm::ivec2 p, int width) {
+  return static_cast<size_t>(p.y) * static_cast<size_t>(width) + static_cast<size_t>(p.x);
+}
 
-bool outside(glm::ivec2 p, glm::ivec2 size) { return p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y; }
+bool outside(glm::ivec2 p, glm::ivec2 size) {
+  return p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y;
+}
 
 // ssao.comp on the CPU: the block and depth chain it reads, and its functions over them.
 struct SsaoMirror {
@@ -52,13 +58,15 @@ struct SsaoMirror {
   glm::vec3 view_position(glm::ivec2 texel, float d) const { return view_position_at(texel, d, p.unproject, full); }
 
   float plane_depth(glm::vec2 ndc, glm::vec3 normal, float plane) const {
-    const float facing = glm::dot(normal, glm::vec3((ndc.x + p.unproject.z) * p.unproject.x, (ndc.y + p.unproject.w) * p.unproject.y, -1.0f));
+    const float facing =
+        glm::dot(normal, glm::vec3((ndc.x + p.unproject.z) * p.unproject.x, (ndc.y + p.unproject.w) * p.unproject.y, -1.0f));
     return facing < -1e-4f ? plane / facing : 0.0f;
   }
   // The hemisphere estimator's correction of the stored depth to the sample's exact position: see
   // subtexel_shift in ssao.comp.
   float subtexel_shift(glm::vec2 ndc, glm::ivec2 texel, int level, glm::vec3 normal, float plane, float radius) const {
-    const glm::ivec2 coarse = glm::min(glm::ivec2(texel.x >> level, texel.y >> level), depth.sizes[static_cast<size_t>(level)] - 1);
+    const glm::ivec2 coarse =
+        glm::min(glm::ivec2(texel.x >> level, texel.y >> level), depth.sizes[static_cast<size_t>(level)] - 1);
     const glm::vec2 centre = (glm::vec2(coarse) + 0.5f) * static_cast<float>(1 << level) / glm::vec2(full) * 2.0f - 1.0f;
     const float exact = plane_depth(ndc, normal, plane), at_centre = plane_depth(centre, normal, plane);
     return exact > 0.0f && at_centre > 0.0f ? std::clamp(exact - at_centre, -radius, radius) : 0.0f;
@@ -91,8 +99,8 @@ struct SsaoMirror {
   }
 
   // No `mediump` here: ssao.comp's horizon keeps every per-tap value highp in its mediump variant.
-  float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, glm::vec3 face, float d,
-                          float turn_angle, float tap_jitter, float radius, int level) const {
+  float horizon_occlusion(glm::ivec2 pixel, glm::vec3 position, glm::vec3 normal, glm::vec3 face, float d, float turn_angle,
+                          float tap_jitter, float radius, int level) const {
     const float radius_pixels = radius * p.pixels_per_unit / d;
     if (radius_pixels < 1.0f) return 0.0f;
     const int steps = p.horizon_steps;
@@ -128,13 +136,14 @@ struct SsaoMirror {
         const float distance_pixels = tap_distance_pixels(step, steps, radius_pixels, tap_jitter);
         for (int side = 0; side < 2; ++side) {
           const glm::vec2 offset = (side == 0 ? 1.0f : -1.0f) * distance_pixels * direction;
-          const glm::ivec2 texel = pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)),
-                                                      static_cast<int>(std::floor(offset.y + 0.5f)));
+          const glm::ivec2 texel =
+              pixel + glm::ivec2(static_cast<int>(std::floor(offset.x + 0.5f)), static_cast<int>(std::floor(offset.y + 0.5f)));
           if (outside(texel, full)) continue;
           const float sample_depth = depth_at(texel, level);
           if (sample_depth <= 0.0f) continue;
           // ssao.comp keeps every per-tap value of the horizon highp in its mediump variant too.
-          const glm::vec3 delta = (glm::vec3((glm::vec2(texel) * tap_scale + tap_offset) * sample_depth, -sample_depth) - position) * inverse_radius;
+          const glm::vec3 delta =
+              (glm::vec3((glm::vec2(texel) * tap_scale + tap_offset) * sample_depth, -sample_depth) - position) * inverse_radius;
           const float distance = glm::length(delta);
           if (distance >= kHorizonFadeEnd || distance <= 0.0f) continue;
           const float rise = glm::dot(delta, normal);
@@ -143,8 +152,10 @@ struct SsaoMirror {
           const float share = rise / (std::abs(along) + rise);  // ssao.comp's pseudo-angle
           float elevation = std::min(along >= 0.0f ? share : 2.0f - share, kHorizonElevationCap * share);
           if (distance > 1.0f) elevation *= (kHorizonFadeEnd - distance) / (kHorizonFadeEnd - 1.0f);
-          if (side == 0) elevation_plus = std::max(elevation_plus, elevation);
-          else elevation_minus = std::max(elevation_minus, elevation);
+          if (side == 0)
+            elevation_plus = std::max(elevation_plus, elevation);
+          else
+            elevation_minus = std::max(elevation_minus, elevation);
         }
       }
       const auto radians = [](float pseudo) { return std::atan2(std::min(pseudo, 2.0f - pseudo), 1.0f - pseudo); };
@@ -152,7 +163,9 @@ struct SsaoMirror {
       elevation_minus = radians(elevation_minus);
       const float h1 = gamma + 0.5f * kPi - std::min(elevation_plus, std::max(gamma + 0.5f * kPi, 0.0f));
       const float h0 = gamma - 0.5f * kPi + std::min(elevation_minus, std::max(0.5f * kPi - gamma, 0.0f));
-      const auto arc_integral = [&](float h) { return (cos_normal + 2.0f * h * std::sin(gamma) - std::cos(2.0f * h - gamma)) * 0.25f; };
+      const auto arc_integral = [&](float h) {
+        return (cos_normal + 2.0f * h * std::sin(gamma) - std::cos(2.0f * h - gamma)) * 0.25f;
+      };
       visibility += projected_length * (arc_integral(h0) + arc_integral(h1));
       open += projected_length * (cos_normal + gamma * std::sin(gamma));  // the whole open arc, as ssao.comp
     }
@@ -200,9 +213,8 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 }
 
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const std::vector<glm::vec3>& view_face_normals,
-                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
-                                    bool mediump) {
+                                    const std::vector<glm::vec3>& view_face_normals, const shared_layout::SsaoParams& params,
+                                    float inverse_far, Estimator estimator, bool mediump) {
   const SsaoMirror shader{depth, params, glm::ivec2(params.full_width, params.full_height)};
   const int width = params.ao_width, height = params.ao_height;
   std::vector<AoTexel> out(static_cast<size_t>(width) * static_cast<size_t>(height), AoTexel(0.0f));
@@ -212,7 +224,8 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
       const float d = depth.at(pixel, 0);
       if (d <= 0.0f) continue;
       const glm::vec3 position = shader.view_position(pixel, d);
-      const glm::vec4 tile_entry = params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
+      const glm::vec4 tile_entry =
+          params.rotation[(pixel.y % SSAO_ROTATION_TILE) * SSAO_ROTATION_TILE + pixel.x % SSAO_ROTATION_TILE];
       const glm::vec2 turn(tile_entry);
       const glm::vec3 normal = view_normals.empty() ? glm::vec3(0, 0, 1) : view_normals[index(pixel, shader.full.x)];
       const glm::vec3 face = view_face_normals.empty() ? normal : view_face_normals[index(pixel, shader.full.x)];
@@ -231,9 +244,11 @@ std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<g
       for (int k = params.first_radius; k < params.end_radius; ++k) {
         const float radius = shader.radius_at(k);
         const int level = shader.level_at(k);
-        ao = std::max(ao, estimator == Estimator::horizon
-                              ? shader.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), tile_entry.z, radius, level)
-                              : shader.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
+        ao = std::max(
+            ao, estimator == Estimator::horizon
+                    ? shader.horizon_occlusion(pixel, position, normal, face, d, std::atan2(turn.y, turn.x), tile_entry.z, radius,
+                                               level)
+                    : shader.hidden_share(position, d, basis, radius, level, mediump, estimator == Estimator::hemisphere));
       }
       out[index({x, y}, width)] = AoTexel(to_half(ao), to_half(d * inverse_far));
     }
@@ -245,9 +260,7 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
                                     const std::vector<glm::vec3>& view_normals, int full_width) {
   const bool bilateral = mode == Blur::bilateral || mode == Blur::denoise;
   const bool denoise = mode == Blur::denoise;
-  const auto normal_at = [&](glm::ivec2 texel) {
-    return view_normals[index(texel * (1 << params.ao_shift), full_width)];
-  };
+  const auto normal_at = [&](glm::ivec2 texel) { return view_normals[index(texel * (1 << params.ao_shift), full_width)]; };
   const int width = params.width, height = params.height;
   const glm::ivec2 step = params.direction == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
   std::vector<AoTexel> out(source.size());
@@ -289,8 +302,7 @@ std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const sh
 }
 
 std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const std::vector<float>& linear_depth,
-                                        const shared_layout::UpsampleParams& params,
-                                        const std::vector<glm::vec3>& view_normals) {
+                                        const shared_layout::UpsampleParams& params, const std::vector<glm::vec3>& view_normals) {
   const glm::ivec2 full(params.full_width, params.full_height), small(params.ao_width, params.ao_height);
   const float plane_tolerance = view_normals.empty() ? 0.0f : params.plane_tolerance;
   std::vector<AoTexel> out(static_cast<size_t>(full.x) * static_cast<size_t>(full.y), AoTexel(0.0f));
@@ -303,8 +315,8 @@ std::vector<AoTexel> reference_upsample(const std::vector<AoTexel>& low, const s
       const glm::vec2 f(static_cast<float>(x & 1) * 0.5f, static_cast<float>(y & 1) * 0.5f);
       const glm::vec3 normal = plane_tolerance > 0.0f ? view_normals[index({x, y}, full.x)] : glm::vec3(0.0f);
       const float facing = glm::dot(view_position_at({x, y}, 1.0f, params.unproject, full), normal);
-      const glm::vec2 step_along_normal = 2.0f * glm::vec2(params.unproject.x, params.unproject.y) / glm::vec2(full) *
-                                          glm::vec2(normal.x, normal.y);
+      const glm::vec2 step_along_normal =
+          2.0f * glm::vec2(params.unproject.x, params.unproject.y) / glm::vec2(full) * glm::vec2(normal.x, normal.y);
       const float sharpness = plane_tolerance > 0.0f ? 1.0f / (plane_tolerance * depth) : 0.0f;
       float best_difference = 1e30f, best_ao = 0.0f, weight_sum = 0.0f, ao_sum = 0.0f;
       for (int dy = 0; dy < 2; ++dy)

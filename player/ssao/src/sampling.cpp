@@ -9,10 +9,18 @@
 
 namespace ssao {
 
-std::string_view name(Pattern pattern) { return names::name_of<Pattern>(kPatternNames, pattern); }
-std::string_view name(Estimator estimator) { return names::name_of<Estimator>(kEstimatorNames, estimator); }
-std::optional<Estimator> parse_estimator(std::string_view text) { return names::parse<Estimator>(kEstimatorNames, text); }
-std::optional<Pattern> parse_pattern(std::string_view text) { return names::parse<Pattern>(kPatternNames, text); }
+std::string_view name(Pattern pattern) {
+  return names::name_of<Pattern>(kPatternNames, pattern);
+}
+std::string_view name(Estimator estimator) {
+  return names::name_of<Estimator>(kEstimatorNames, estimator);
+}
+std::optional<Estimator> parse_estimator(std::string_view text) {
+  return names::parse<Estimator>(kEstimatorNames, text);
+}
+std::optional<Pattern> parse_pattern(std::string_view text) {
+  return names::parse<Pattern>(kPatternNames, text);
+}
 
 uint64_t Random::next() {
   uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
@@ -21,7 +29,9 @@ uint64_t Random::next() {
   return z ^ (z >> 31);
 }
 
-double Random::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+double Random::uniform() {
+  return static_cast<double>(next() >> 11) * 0x1.0p-53;
+}
 
 namespace {
 
@@ -46,8 +56,7 @@ std::vector<glm::dvec2> unit_jittered(int n, Random& random) {
   const int cols = n / rows;
   std::vector<glm::dvec2> points;
   for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c)
-      points.emplace_back((c + random.uniform()) / cols, (r + random.uniform()) / rows);
+    for (int c = 0; c < cols; ++c) points.emplace_back((c + random.uniform()) / cols, (r + random.uniform()) / rows);
   return points;
 }
 
@@ -136,10 +145,18 @@ std::vector<glm::dvec2> square_points(Pattern pattern, int n, uint64_t seed) {
   Random random(seed);
   std::vector<glm::dvec2> unit;
   switch (pattern) {
-    case Pattern::random: unit = unit_random(n, random); break;
-    case Pattern::jittered: unit = unit_jittered(n, random); break;
-    case Pattern::latin: unit = unit_latin(n, random); break;
-    case Pattern::poisson: unit = unit_poisson(n, random); break;
+    case Pattern::random:
+      unit = unit_random(n, random);
+      break;
+    case Pattern::jittered:
+      unit = unit_jittered(n, random);
+      break;
+    case Pattern::latin:
+      unit = unit_latin(n, random);
+      break;
+    case Pattern::poisson:
+      unit = unit_poisson(n, random);
+      break;
   }
   for (glm::dvec2& p : unit) p = p * 2.0 - 1.0;
   return unit;
@@ -177,8 +194,7 @@ std::vector<glm::dvec3> make_kernel(Estimator estimator, Pattern pattern, int n)
   Random random(seed ^ 0xFFFF'0000'0000ull);
   const std::vector<int> stratum = permutation(n, random);
   for (int i = 0; i < n; ++i) {
-    const double u = pattern == Pattern::random ? random.uniform()
-                                                : (stratum[static_cast<size_t>(i)] + random.uniform()) / n;
+    const double u = pattern == Pattern::random ? random.uniform() : (stratum[static_cast<size_t>(i)] + random.uniform()) / n;
     const glm::dvec2 p = xi[static_cast<size_t>(i)];
     const glm::dvec3 direction = estimator == Estimator::sphere ? sphere_point(p) : cosine_hemisphere_point(p);
     kernel.push_back(shell_radius(u, kShellMin, 1.0) * direction);

@@ -150,7 +150,7 @@ bool read_dump(const std::string& dir, Dump& out, std::string& error) {
     for (int c = 0; c < 3; ++c) {
       const char* bad = !std::isfinite(dump.view.position.at(i, c)) ? "position.exr"
                         : !std::isfinite(dump.view.normal.at(i, c)) ? "normal.exr"
-                                                                     : nullptr;
+                                                                    : nullptr;
       if (bad) {
         error = base + bad + ": pixel (" + std::to_string(i % static_cast<size_t>(width)) + ", " +
                 std::to_string(i / static_cast<size_t>(width)) + "): expected finite values on an object pixel";

@@ -8,8 +8,7 @@
 namespace aoref {
 
 Image::Image(int w, int h, int c, float fill)
-    : width(w), height(h), channels(c),
-      values(static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(c), fill) {}
+    : width(w), height(h), channels(c), values(static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(c), fill) {}
 
 bool read_image(const std::string& path, Image& out, std::string& error) {
   auto input = OIIO::ImageInput::open(path);
@@ -19,8 +18,8 @@ bool read_image(const std::string& path, Image& out, std::string& error) {
   }
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-    error = path + ": expected a non-empty image, found " + std::to_string(spec.width) + "x" +
-            std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) + " channels";
+    error = path + ": expected a non-empty image, found " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+            " with " + std::to_string(spec.nchannels) + " channels";
     return false;
   }
   Image image(spec.width, spec.height, spec.nchannels);
@@ -32,8 +31,7 @@ bool read_image(const std::string& path, Image& out, std::string& error) {
   return true;
 }
 
-bool write_exr(const std::string& path, const Image& image, const std::vector<std::string>& channel_names,
-               std::string& error) {
+bool write_exr(const std::string& path, const Image& image, const std::vector<std::string>& channel_names, std::string& error) {
   if (static_cast<int>(channel_names.size()) != image.channels) {
     error = path + ": " + std::to_string(channel_names.size()) + " channel names for an image of " +
             std::to_string(image.channels) + " channels";
@@ -47,8 +45,7 @@ bool write_exr(const std::string& path, const Image& image, const std::vector<st
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
   spec.channelnames = channel_names;
   spec.attribute("compression", "zip");
-  if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, image.values.data()) ||
-      !output->close()) {
+  if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, image.values.data()) || !output->close()) {
     error = path + ": cannot write (" + output->geterror() + ")";
     return false;
   }

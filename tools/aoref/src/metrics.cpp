@@ -9,7 +9,9 @@
 namespace aoref {
 namespace {
 
-std::string size_text(const Image& image) { return std::to_string(image.width) + "x" + std::to_string(image.height); }
+std::string size_text(const Image& image) {
+  return std::to_string(image.width) + "x" + std::to_string(image.height);
+}
 
 // Mean SSIM over object pixels with a masked, renormalised Gaussian window.
 double masked_ssim(const Image& x, const Image& y, const std::vector<uint8_t>& object, const MetricsSettings& settings) {
@@ -157,8 +159,7 @@ Metrics compare(const Image& estimate, const Image& reference, const Image& dept
 }
 
 std::vector<int64_t> match_previous(const Image& position_now, const Image& position_before,
-                                    const glm::dmat4& view_projection_before, const glm::dvec3& eye_before,
-                                    double tolerance) {
+                                    const glm::dmat4& view_projection_before, const glm::dvec3& eye_before, double tolerance) {
   if (!position_now.same_size(position_before) || position_now.channels < 4 || position_before.channels < 4)
     throw std::invalid_argument("aoref::match_previous: expected two position images (4 channels) of one size, found " +
                                 size_text(position_now) + " and " + size_text(position_before));

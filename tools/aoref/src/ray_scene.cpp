@@ -123,10 +123,10 @@ bool RayScene::build(const scene::Scene& source, std::string& error) {
     return false;
   }
   // rtcSetNewGeometryBuffer pads the allocation as Embree's SIMD loads need.
-  auto* vertex_buffer = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                    3 * sizeof(float), vertices.size()));
-  auto* index_buffer = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                      3 * sizeof(uint32_t), triangles.size()));
+  auto* vertex_buffer = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  auto* index_buffer = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles.size()));
   if (!vertex_buffer || !index_buffer) {
     rtcReleaseGeometry(geometry);
     error = "Embree: cannot allocate " + std::to_string(triangles.size()) + " triangles (" + impl->last_error + ")";
@@ -172,8 +172,14 @@ bool RayScene::occluded(const glm::dvec3& origin, const glm::dvec3& direction, d
 }
 
 // A moved-from RayScene answers like an empty one.
-size_t RayScene::triangle_count() const { return impl_ ? impl_->triangles : 0; }
-size_t RayScene::skipped_triangles() const { return impl_ ? impl_->skipped : 0; }
-double RayScene::scene_radius() const { return impl_ ? impl_->radius : 0.0; }
+size_t RayScene::triangle_count() const {
+  return impl_ ? impl_->triangles : 0;
+}
+size_t RayScene::skipped_triangles() const {
+  return impl_ ? impl_->skipped : 0;
+}
+double RayScene::scene_radius() const {
+  return impl_ ? impl_->radius : 0.0;
+}
 
 }  // namespace aoref

@@ -20,7 +20,9 @@ double radical_inverse(uint32_t i, uint32_t base) {
   return result;
 }
 
-double wrap(double u) { return u - std::floor(u); }
+double wrap(double u) {
+  return u - std::floor(u);
+}
 
 // An orthonormal basis with `n` as its third axis (Duff et al. 2017: no branch on a chosen axis).
 void basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
@@ -60,7 +62,9 @@ bool usable(const View& view, size_t pixel) {
   return glm::length(n) > 0.5 && std::isfinite(p.x + p.y + p.z);
 }
 
-double binomial_error(double p, int n) { return std::sqrt(std::max(0.0, p * (1.0 - p)) / n); }
+double binomial_error(double p, int n) {
+  return std::sqrt(std::max(0.0, p * (1.0 - p)) / n);
+}
 
 void trace_pixel(const Job& job, size_t pixel) {
   const View& view = job.view;
@@ -116,8 +120,10 @@ void trace_pixel(const Job& job, size_t pixel) {
 
 std::string_view name(Reference reference) {
   switch (reference) {
-    case Reference::near_field: return "near-field";
-    case Reference::sphere: return "sphere";
+    case Reference::near_field:
+      return "near-field";
+    case Reference::sphere:
+      return "sphere";
   }
   return "unknown";
 }
@@ -133,8 +139,8 @@ double surface_epsilon(double scene_radius, const glm::dvec3& point) {
   return 1e-5 * scene_radius + 1e-6 * largest;
 }
 
-bool compute_reference(const RayScene& scene, const View& view, const ReferenceSettings& settings,
-                       ReferenceResult& out, std::string& error) {
+bool compute_reference(const RayScene& scene, const View& view, const ReferenceSettings& settings, ReferenceResult& out,
+                       std::string& error) {
   if (settings.rays < 1 || settings.rays > 1 << 20) {
     error = "rays: expected 1 to " + std::to_string(1 << 20) + ", found " + std::to_string(settings.rays);
     return false;
@@ -152,7 +158,8 @@ bool compute_reference(const RayScene& scene, const View& view, const ReferenceS
             std::to_string(view.normal.height) + "x" + std::to_string(view.normal.channels);
     return false;
   }
-  if (view.radii.empty() || std::any_of(view.radii.begin(), view.radii.end(), [](double r) { return !(r > 0.0) || !std::isfinite(r); })) {
+  if (view.radii.empty() ||
+      std::any_of(view.radii.begin(), view.radii.end(), [](double r) { return !(r > 0.0) || !std::isfinite(r); })) {
     error = "view.radii: expected at least one positive finite radius";
     return false;
   }
@@ -213,7 +220,8 @@ bool compute_reference(const RayScene& scene, const View& view, const ReferenceS
     result.max_standard_error = std::max(result.max_standard_error, se);
   }
   result.mean_standard_error = result.object_pixels ? sum / static_cast<double>(result.object_pixels) : 0.0;
-  const uint64_t per_pixel = static_cast<uint64_t>(settings.rays) * (settings.reference == Reference::sphere ? view.radii.size() : 1);
+  const uint64_t per_pixel =
+      static_cast<uint64_t>(settings.rays) * (settings.reference == Reference::sphere ? view.radii.size() : 1);
   result.rays_traced = per_pixel * result.object_pixels;
   out = std::move(result);
   return true;

@@ -2,10 +2,10 @@
 // The player's sub-commands over the render pipeline: `render` (one scene to an image, per-pass
 // times, optional dump for independent evaluation) and `info` (platform and GL capabilities).
 #include "gl/caps.h"
-#include "render/renderer.h"
-#include "scene/gltf_loader.h"
 #include "playback/timeline.h"
+#include "render/renderer.h"
 #include "scene/camera.h"
+#include "scene/gltf_loader.h"
 
 #include <iosfwd>
 #include <string>
@@ -14,11 +14,11 @@
 namespace app {
 
 struct RenderOptions {
-  std::string scene;            // a .gltf/.glb path or builtin:NAME
-  std::string output;           // PNG path
+  std::string scene;   // a .gltf/.glb path or builtin:NAME
+  std::string output;  // PNG path
   std::string platform = "auto";
-  std::string dump_dir;         // empty: no dump
-  int frames = 1;               // frames rendered; times are the median over all but the first
+  std::string dump_dir;  // empty: no dump
+  int frames = 1;        // frames rendered; times are the median over all but the first
   // Light field output (--display): a display file; per-view PNGs; a quilt's panel image; the probe.
   std::string display, modules_dir, native_output;
   bool view_probe = false;

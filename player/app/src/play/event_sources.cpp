@@ -30,10 +30,17 @@ SignalSource::Received SignalSource::drain() {
   while (read(fd_.get(), &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
     switch (info.ssi_signo) {
       case SIGTERM:
-      case SIGINT: received.stop = true; break;
-      case SIGHUP: ++received.reloads; break;
-      case SIGUSR1: received.check = true; break;
-      default: break;
+      case SIGINT:
+        received.stop = true;
+        break;
+      case SIGHUP:
+        ++received.reloads;
+        break;
+      case SIGUSR1:
+        received.check = true;
+        break;
+      default:
+        break;
     }
   }
   return received;
@@ -53,8 +60,10 @@ void ContentWatch::watch(const std::set<std::string>& folders, std::vector<std::
     for (const auto& [wd, dir] : folders_) known = known || dir == folder;
     if (known) continue;
     const int wd = inotify_add_watch(fd_.get(), folder.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE);
-    if (wd >= 0) folders_[wd] = folder;
-    else problems.push_back(folder + ": cannot watch for changes (" + std::string(std::strerror(errno)) + ")");
+    if (wd >= 0)
+      folders_[wd] = folder;
+    else
+      problems.push_back(folder + ": cannot watch for changes (" + std::string(std::strerror(errno)) + ")");
   }
 }
 
@@ -87,20 +96,20 @@ void ButtonActions::read(hal::Buttons& buttons, std::vector<hal::Action>& out) {
       const hal::ButtonConfig& button = buttons_[event.button];
       const bool has_long = button.long_action != hal::Action::none;
       switch (event.action) {
-        case hal::ButtonAction::Press:
+        case hal::ButtonAction::press:
           if (!has_long) out.push_back(button.action);
           long_fired_[event.button] = false;
           break;
-        case hal::ButtonAction::Repeat:
+        case hal::ButtonAction::repeat:
           if (!has_long) out.push_back(button.action);
           break;
-        case hal::ButtonAction::LongPress:
+        case hal::ButtonAction::long_press:
           if (has_long) {
             out.push_back(button.long_action);
             long_fired_[event.button] = true;
           }
           break;
-        case hal::ButtonAction::Release:
+        case hal::ButtonAction::release:
           if (has_long && !long_fired_[event.button]) out.push_back(button.action);
           break;
       }

@@ -2,9 +2,9 @@
 // Where the play loop's events come from, each an fd in one poll: signals (signalfd), changes to
 // the content's files (inotify), the board's buttons as actions, and the poll over all of them.
 // Each reads without blocking and hands back plain data; what the events do is the loop's affair.
+#include "base/unique_fd.h"
 #include "hal/board.h"
 #include "hal/buttons.h"
-#include "base/unique_fd.h"
 
 #include <poll.h>
 

@@ -6,12 +6,18 @@ using State = KioskState::State;
 
 std::string_view name(State state) {
   switch (state) {
-    case State::starting: return "starting";
-    case State::loading: return "loading";
-    case State::playing: return "playing";
-    case State::paused: return "paused";
-    case State::error: return "error";
-    case State::no_display: return "no display";
+    case State::starting:
+      return "starting";
+    case State::loading:
+      return "loading";
+    case State::playing:
+      return "playing";
+    case State::paused:
+      return "paused";
+    case State::error:
+      return "error";
+    case State::no_display:
+      return "no display";
   }
   return "?";
 }
@@ -19,19 +25,33 @@ std::string_view name(State state) {
 KioskState::LedPlan led_plan(State state, bool warning, bool check_failed) {
   KioskState::LedPlan plan;
   switch (state) {
-    case State::starting: plan.status = hal::LedPattern::BlinkFast; break;
-    case State::loading: plan.status = hal::LedPattern::BlinkSlow; break;
-    case State::playing: plan.status = hal::LedPattern::Heartbeat; break;
-    case State::paused: plan.status = hal::LedPattern::On; break;
-    case State::error: plan.error = hal::LedPattern::On; break;
-    case State::no_display: plan.status = hal::LedPattern::BlinkSlow; break;
+    case State::starting:
+      plan.status = hal::LedPattern::blink_fast;
+      break;
+    case State::loading:
+      plan.status = hal::LedPattern::blink_slow;
+      break;
+    case State::playing:
+      plan.status = hal::LedPattern::heartbeat;
+      break;
+    case State::paused:
+      plan.status = hal::LedPattern::on;
+      break;
+    case State::error:
+      plan.error = hal::LedPattern::on;
+      break;
+    case State::no_display:
+      plan.status = hal::LedPattern::blink_slow;
+      break;
   }
   if (state != State::error)
-    plan.error = check_failed ? hal::LedPattern::BlinkFast : warning ? hal::LedPattern::BlinkSlow : hal::LedPattern::Off;
+    plan.error = check_failed ? hal::LedPattern::blink_fast : warning ? hal::LedPattern::blink_slow : hal::LedPattern::off;
   return plan;
 }
 
-std::string_view KioskState::name() const { return app::name(state_); }
+std::string_view KioskState::name() const {
+  return app::name(state_);
+}
 
 namespace {
 bool change(State& state, State to) {
@@ -41,14 +61,22 @@ bool change(State& state, State to) {
 }
 }  // namespace
 
-bool KioskState::display_lost() { return change(state_, State::no_display); }
+bool KioskState::display_lost() {
+  return change(state_, State::no_display);
+}
 
 bool KioskState::frame_drawn(Shown shown, bool paused) {
   State to = State::playing;
   switch (shown) {
-    case Shown::nothing_playable: to = State::error; break;
-    case Shown::loading: to = State::loading; break;
-    case Shown::scene: to = paused ? State::paused : State::playing; break;
+    case Shown::nothing_playable:
+      to = State::error;
+      break;
+    case Shown::loading:
+      to = State::loading;
+      break;
+    case Shown::scene:
+      to = paused ? State::paused : State::playing;
+      break;
   }
   return change(state_, to);
 }

@@ -21,7 +21,7 @@ class KioskState {
 
   // The status LED tells the state, the error LED problems.
   struct LedPlan {
-    hal::LedPattern status = hal::LedPattern::Off, error = hal::LedPattern::Off;
+    hal::LedPattern status = hal::LedPattern::off, error = hal::LedPattern::off;
     bool operator==(const LedPlan&) const = default;
   };
 

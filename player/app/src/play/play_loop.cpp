@@ -113,7 +113,9 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
   for (size_t i = 0; i < n; ++i) {
     const platform::Event& event = events[i];
     switch (event.type) {
-      case platform::EventType::close_requested: closed = true; break;
+      case platform::EventType::close_requested:
+        closed = true;
+        break;
       case platform::EventType::resized: {
         std::string error;
         if (!p_.drawer.resized(error)) p_.status.report(error);
@@ -131,8 +133,12 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
         display_found_s_ = p_.clock.now();
         p_.drawer.configure_again();
         break;
-      case platform::EventType::warning: p_.status.report(p_.platform.last_error()); break;
-      case platform::EventType::remake: remake_reason_ = p_.platform.last_error(); break;
+      case platform::EventType::warning:
+        p_.status.report(p_.platform.last_error());
+        break;
+      case platform::EventType::remake:
+        remake_reason_ = p_.platform.last_error();
+        break;
       case platform::EventType::key_press:
       case platform::EventType::key_release:
         p_.buttons.key(event.key, event.type == platform::EventType::key_press);
@@ -158,17 +164,32 @@ PlayLoop::Next PlayLoop::drain_events(bool& closed) {
 void PlayLoop::act(hal::Action action, double now) {
   p_.status.note_action(action);
   switch (action) {
-    case hal::Action::none: break;
-    case hal::Action::next: timeline_->next(now); break;
-    case hal::Action::previous: timeline_->previous(now); break;
-    case hal::Action::restart: timeline_->restart(now); break;
-    case hal::Action::pause:
-      if (timeline_->paused()) timeline_->resume(now);
-      else timeline_->pause(now);
+    case hal::Action::none:
       break;
-    case hal::Action::ao: p_.drawer.toggle_ao(p_.options.settings.ao); break;
-    case hal::Action::output: p_.drawer.next_output(); break;
-    case hal::Action::check: p_.check.request(); break;
+    case hal::Action::next:
+      timeline_->next(now);
+      break;
+    case hal::Action::previous:
+      timeline_->previous(now);
+      break;
+    case hal::Action::restart:
+      timeline_->restart(now);
+      break;
+    case hal::Action::pause:
+      if (timeline_->paused())
+        timeline_->resume(now);
+      else
+        timeline_->pause(now);
+      break;
+    case hal::Action::ao:
+      p_.drawer.toggle_ao(p_.options.settings.ao);
+      break;
+    case hal::Action::output:
+      p_.drawer.next_output();
+      break;
+    case hal::Action::check:
+      p_.check.request();
+      break;
   }
 }
 
@@ -216,8 +237,10 @@ void PlayLoop::draw(const playback::Cue& cue) {
   if (p_.kiosk.frame_drawn(shown, timeline_->paused())) update_status(true);  // sets the LEDs too
 
   p_.drawer.begin_frame();
-  if (p_.check.checking()) p_.check.draw(p_.drawer.present(), p_.drawer.width(), p_.drawer.height());
-  else p_.drawer.draw(cue.fade);
+  if (p_.check.checking())
+    p_.check.draw(p_.drawer.present(), p_.drawer.width(), p_.drawer.height());
+  else
+    p_.drawer.draw(cue.fade);
   p_.drawer.end_frame(!p_.check.checking(), p_.status);
   p_.drawer.draw_overlay(p_.kiosk.name(), *p_.devices.status);
 }
@@ -225,7 +248,8 @@ void PlayLoop::draw(const playback::Cue& cue) {
 void PlayLoop::wait_for_events(double next_frame) {
   // It sleeps only until the next frame is due.
   int timeout_ms = 0;
-  if (!p_.platform.presenting()) timeout_ms = p_.platform.poll_interval_ms();
+  if (!p_.platform.presenting())
+    timeout_ms = p_.platform.poll_interval_ms();
   else if (!p_.clock.manual() && p_.options.fps > 0.0)
     timeout_ms = std::max(0, static_cast<int>((next_frame - p_.clock.now()) * 1000.0));
   poll_.wait({p_.signals.fd(), p_.watch.fd(), p_.loader.fd(), p_.platform.event_fd(), p_.devices.buttons->fd(),
@@ -267,7 +291,8 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
   } else {
     p_.status.service().frame_presented(p_.clock.monotonic());  // only presented frames feed the watchdog
   }
-  if (frame_ == 0) p_.out << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+  if (frame_ == 0)
+    p_.out << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
   if (display_found_s_ >= 0.0 && p_.platform.presenting()) {
     p_.out << "display: showing frames again " << (p_.clock.now() - display_found_s_) * 1000.0 << " ms after it came\n"
            << std::flush;
@@ -336,7 +361,8 @@ int PlayLoop::finish(int exit_code) {
     std::vector<std::uint8_t> rgba;
     platform::Size size;
     std::string error;
-    if (p_.platform.capture_scanout(rgba, size, error) && write_png(p_.options.drm_writeback, size.width, size.height, rgba, error)) {
+    if (p_.platform.capture_scanout(rgba, size, error) &&
+        write_png(p_.options.drm_writeback, size.width, size.height, rgba, error)) {
       p_.out << "scanout of frame " << frame_ - 1 << " captured to " << p_.options.drm_writeback << "\n";
     } else {
       p_.err << "error: --drm-writeback: " << error << "\n";

@@ -4,6 +4,7 @@
 #include "app/play_command.h"
 #include "hal/devices.h"
 #include "loader.h"
+#include "platform/platform.h"
 #include "play/event_sources.h"
 #include "play/frame_drawer.h"
 #include "play/gpu_recovery.h"
@@ -12,7 +13,6 @@
 #include "play/scene_cache.h"
 #include "play/self_check_session.h"
 #include "play/status_reporter.h"
-#include "platform/platform.h"
 #include "playback/timeline.h"
 
 #include <cstdint>

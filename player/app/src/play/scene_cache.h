@@ -29,7 +29,7 @@ struct CachedScene {
   scene::Bounds incoming_bounds;
   // The light field display the item is shown on (null: the platform's own 2D surface).
   std::shared_ptr<const lightfield::Display> display, incoming_display;
-  std::string error;  // failed to load: the item is skipped
+  std::string error;                  // failed to load: the item is skipped
   std::vector<std::string> warnings;  // loaded anyway (a texture drawn white): in the status while it plays
   bool requested = false;
 };

@@ -12,8 +12,14 @@ namespace app {
 
 SelfCheckSession::SelfCheckSession(hal::Camera* camera, hal::MockCamera* mock, std::vector<CameraStep> script, double interval_s,
                                    const hal::Clock& clock, StatusReporter& status, KioskState& kiosk)
-    : camera_(camera), mock_(mock), script_(std::move(script)), interval_s_(interval_s),
-      next_check_(interval_s > 0.0 ? interval_s : 0.0), clock_(clock), status_(status), kiosk_(kiosk) {}
+    : camera_(camera),
+      mock_(mock),
+      script_(std::move(script)),
+      interval_s_(interval_s),
+      next_check_(interval_s > 0.0 ? interval_s : 0.0),
+      clock_(clock),
+      status_(status),
+      kiosk_(kiosk) {}
 
 void SelfCheckSession::start_when_due(double now, const render::PresentTarget& present, int width, int height) {
   if (requested_ && !checking_) start(now, present, width, height);
@@ -39,7 +45,8 @@ void SelfCheckSession::start(double now, const render::PresentTarget& present, i
   std::vector<uint8_t> flipped(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 255);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      std::copy_n(image_.at(x, h - 1 - y), 3, &flipped[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 4]);
+      std::copy_n(image_.at(x, h - 1 - y), 3,
+                  &flipped[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 4]);
   frame_ = make_blit_source(w, h, present.srgb);
   gl::api.BindTexture(GL_TEXTURE_2D, frame_.texture.id());
   gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -59,15 +66,17 @@ void SelfCheckSession::draw(const render::PresentTarget& present, int w, int h) 
 bool SelfCheckSession::service_camera(double now) {
   if (camera_ == nullptr) return false;
   while (next_step_ < script_.size() && script_[next_step_].at_s <= now) {
-    if (script_[next_step_++].plugged) mock_->replug();
-    else mock_->unplug();
+    if (script_[next_step_++].plugged)
+      mock_->replug();
+    else
+      mock_->unplug();
   }
   // The queue is drained before the stall check: after a long frame (shader compilation at start,
   // a slow board) a frame waiting there is not a stalled camera.
   const bool drained = !checking_ && camera_->read_frame(capture_);
   camera_->service();
   bool status_due = false;
-  const bool lost = camera_->state() != hal::CameraState::Streaming;
+  const bool lost = camera_->state() != hal::CameraState::streaming;
   if (lost != camera_lost_) {
     if (lost) status_.report("camera: " + camera_->last_error());
     camera_lost_ = lost;

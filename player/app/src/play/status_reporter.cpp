@@ -33,7 +33,11 @@ long resident_kib() {
 }  // namespace
 
 StatusReporter::StatusReporter(hal::Status& board, KioskState& kiosk, const PlayClock& clock, std::ostream& err)
-    : board_(board), kiosk_(kiosk), clock_(clock), err_(err), status_led_(board.find_led("status")),
+    : board_(board),
+      kiosk_(kiosk),
+      clock_(clock),
+      err_(err),
+      status_led_(board.find_led("status")),
       error_led_(board.find_led("error")) {}
 
 void StatusReporter::report(const std::string& error) {

@@ -7,9 +7,9 @@ namespace gl {
 
 struct Caps {
   std::string renderer, version, shading_language;
-  bool desktop_gl = false;   // desktop core profile running ES 3.1 shaders (OSMesa)
-  bool timer_query = false;  // EXT_disjoint_timer_query (GLES) or ARB_timer_query / GL 3.3 (desktop)
-  bool debug_output = false; // KHR_debug
+  bool desktop_gl = false;    // desktop core profile running ES 3.1 shaders (OSMesa)
+  bool timer_query = false;   // EXT_disjoint_timer_query (GLES) or ARB_timer_query / GL 3.3 (desktop)
+  bool debug_output = false;  // KHR_debug
   // The context tells of a GPU reset (KHR/EXT_robustness, made with lose-context-on-reset): after one,
   // GetGraphicsResetStatus answers non-zero and every object of the context is gone.
   bool reset_notification = false;

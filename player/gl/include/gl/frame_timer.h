@@ -13,7 +13,7 @@ namespace gl {
 class FrameTimer {
  public:
   static constexpr int kMaxMarks = 12;
-  static constexpr int kRing = 3;  // frames in flight whose times are still to be read
+  static constexpr int kRing = 3;               // frames in flight whose times are still to be read
   using Times = std::array<double, kMaxMarks>;  // milliseconds per pass; negative: not marked
 
   // Creates the queries; call once with a current context. `serialise` (only where timing is the

@@ -4,6 +4,7 @@
 // it calls gl.Name(...), and the platform fills the table through its GetProcAddress.
 #define GL_GLES_PROTOTYPES 0
 #include <GLES3/gl31.h>
+// gl2ext.h needs the types gl31.h declares.
 #include <GLES2/gl2ext.h>
 
 #include "platform/platform.h"
@@ -13,6 +14,8 @@
 
 namespace gl {
 
+// The tables are laid out by hand, two entry points to a line where they fit.
+// clang-format off
 // Entry points every supported context has: GLES 3.1, or desktop GL 4.5 core running ES 3.1 shaders.
 #define PLAYER_GL_REQUIRED(X)                                                         \
   X(PFNGLGETSTRINGPROC, GetString) X(PFNGLGETSTRINGIPROC, GetStringi)                 \
@@ -67,6 +70,7 @@ namespace gl {
   X(PFNGLDEBUGMESSAGECALLBACKKHRPROC, DebugMessageCallback)         \
   X(PFNGLDEBUGMESSAGECONTROLKHRPROC, DebugMessageControl)         \
   X(PFNGLGETGRAPHICSRESETSTATUSKHRPROC, GetGraphicsResetStatus)
+// clang-format on
 
 struct Api {
 #define PLAYER_GL_MEMBER(type, name) type name = nullptr;

@@ -36,13 +36,27 @@ class Object {
 };
 
 namespace detail {
-inline void delete_buffer(GLuint id) { api.DeleteBuffers(1, &id); }
-inline void delete_texture(GLuint id) { api.DeleteTextures(1, &id); }
-inline void delete_framebuffer(GLuint id) { api.DeleteFramebuffers(1, &id); }
-inline void delete_vertex_array(GLuint id) { api.DeleteVertexArrays(1, &id); }
-inline void delete_query(GLuint id) { api.DeleteQueries(1, &id); }
-inline void delete_program(GLuint id) { api.DeleteProgram(id); }
-inline void delete_shader(GLuint id) { api.DeleteShader(id); }
+inline void delete_buffer(GLuint id) {
+  api.DeleteBuffers(1, &id);
+}
+inline void delete_texture(GLuint id) {
+  api.DeleteTextures(1, &id);
+}
+inline void delete_framebuffer(GLuint id) {
+  api.DeleteFramebuffers(1, &id);
+}
+inline void delete_vertex_array(GLuint id) {
+  api.DeleteVertexArrays(1, &id);
+}
+inline void delete_query(GLuint id) {
+  api.DeleteQueries(1, &id);
+}
+inline void delete_program(GLuint id) {
+  api.DeleteProgram(id);
+}
+inline void delete_shader(GLuint id) {
+  api.DeleteShader(id);
+}
 }  // namespace detail
 
 using Buffer = Object<detail::delete_buffer>;
@@ -53,10 +67,30 @@ using Query = Object<detail::delete_query>;
 using Program = Object<detail::delete_program>;
 using Shader = Object<detail::delete_shader>;
 
-inline Buffer make_buffer() { GLuint id = 0; api.GenBuffers(1, &id); return Buffer(id); }
-inline Texture make_texture() { GLuint id = 0; api.GenTextures(1, &id); return Texture(id); }
-inline Framebuffer make_framebuffer() { GLuint id = 0; api.GenFramebuffers(1, &id); return Framebuffer(id); }
-inline VertexArray make_vertex_array() { GLuint id = 0; api.GenVertexArrays(1, &id); return VertexArray(id); }
-inline Query make_query() { GLuint id = 0; api.GenQueries(1, &id); return Query(id); }
+inline Buffer make_buffer() {
+  GLuint id = 0;
+  api.GenBuffers(1, &id);
+  return Buffer(id);
+}
+inline Texture make_texture() {
+  GLuint id = 0;
+  api.GenTextures(1, &id);
+  return Texture(id);
+}
+inline Framebuffer make_framebuffer() {
+  GLuint id = 0;
+  api.GenFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+inline VertexArray make_vertex_array() {
+  GLuint id = 0;
+  api.GenVertexArrays(1, &id);
+  return VertexArray(id);
+}
+inline Query make_query() {
+  GLuint id = 0;
+  api.GenQueries(1, &id);
+  return Query(id);
+}
 
 }  // namespace gl

@@ -99,9 +99,9 @@ struct Options {
   // A registry name, or "auto": with `display` the platform for a screen (see choose_auto), without it
   // the first headless one that works.
   std::string_view name = "auto";
-  bool display = false;            // the caller shows frames (play), rather than reading them back (render)
-  Size size{1024, 768};            // the surface to make; a window's initial size; kms: the size while no display is connected
-  bool fullscreen = false;         // window: start fullscreen
+  bool display = false;     // the caller shows frames (play), rather than reading them back (render)
+  Size size{1024, 768};     // the surface to make; a window's initial size; kms: the size while no display is connected
+  bool fullscreen = false;  // window: start fullscreen
   bool debug_context = false;
   // kms, as mpv names them: the DRM node (empty: the first with KMS and a connected display), the
   // connector (auto, or a name such as HDMI-A-1), the mode (preferred, highest, WxH[@R]) and whether

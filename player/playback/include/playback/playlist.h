@@ -30,12 +30,12 @@ struct OrbitKey {
 
 struct CameraPath {
   Motion motion = Motion::turntable;
-  double period_s = 20;       // turntable: seconds per turn
-  double azimuth_deg = 30;    // start azimuth (turntable), the pose (still)
-  double elevation_deg = 20;  // in [-89, 89]
-  double distance = 1.0;      // multiple of the distance that fits the scene in view
-  double fov_deg = 45;        // vertical field of view, in (1, 170)
-  std::vector<OrbitKey> keys; // orbit only: >= 2, t strictly increasing from 0
+  double period_s = 20;        // turntable: seconds per turn
+  double azimuth_deg = 30;     // start azimuth (turntable), the pose (still)
+  double elevation_deg = 20;   // in [-89, 89]
+  double distance = 1.0;       // multiple of the distance that fits the scene in view
+  double fov_deg = 45;         // vertical field of view, in (1, 170)
+  std::vector<OrbitKey> keys;  // orbit only: >= 2, t strictly increasing from 0
 };
 
 // A render setting from an item's `ao` table: key as written in the playlist (the command line's
@@ -81,8 +81,8 @@ struct ParseOptions {
 // Parses a playlist. `source_path` names the file in messages and is the folder relative paths
 // resolve against. Scene files are not required to exist (the player skips a missing one when it
 // loads it); only the content-root rule is checked. On failure `out` is left unchanged.
-bool parse_playlist(std::string_view toml_text, const std::string& source_path, const ParseOptions& options,
-                    Playlist& out, std::string& error);
+bool parse_playlist(std::string_view toml_text, const std::string& source_path, const ParseOptions& options, Playlist& out,
+                    std::string& error);
 // Reads and parses a playlist file; "<file>: cannot open playlist (<reason>)" if it cannot be read.
 bool load_playlist(const std::string& path, const ParseOptions& options, Playlist& out, std::string& error);
 

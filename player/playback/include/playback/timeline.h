@@ -43,13 +43,13 @@ struct Camera {  // what scene::Framing takes
 
 // What the playlist says should show at a time: the item, how far into it, the camera and the fade.
 struct Cue {
-  int item = -1;           // index into playlist().items; -1: nothing playable
-  double item_time = 0;    // seconds since this item started (frozen while paused)
+  int item = -1;         // index into playlist().items; -1: nothing playable
+  double item_time = 0;  // seconds since this item started (frozen while paused)
   Camera camera;
-  float fade = 1;          // brightness multiplier in [0, 1]
-  int next_item = -1;      // the item that follows (may equal `item`), to prepare in advance; -1 if none
-  bool finished = false;   // loop = false and the last item is over
-  bool cut = false;        // the item or camera jumped since the previous at() (true on the first call)
+  float fade = 1;              // brightness multiplier in [0, 1]
+  int next_item = -1;          // the item that follows (may equal `item`), to prepare in advance; -1 if none
+  bool finished = false;       // loop = false and the last item is over
+  bool cut = false;            // the item or camera jumped since the previous at() (true on the first call)
   std::uint64_t sequence = 0;  // + 1 at every item start (the first is 1); a kept item in replace() keeps it
 };
 

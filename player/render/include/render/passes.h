@@ -7,13 +7,16 @@
 #include "render/view.h"
 #include "render/view_targets.h"
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
 namespace render {
 
-enum Pass { kDepthPrepass, kGBuffer, kDepthChain, kSsao, kTemporal, kBlurH, kBlurV, kPresent, kPassCount };
-std::string_view pass_name(int pass);
+// The passes of one frame of one view, in order; their times are kept by index (PassTimes).
+enum class Pass : std::uint8_t { depth_prepass, gbuffer, depth_chain, ssao, temporal, blur_h, blur_v, present };
+inline constexpr int kPassCount = static_cast<int>(Pass::present) + 1;
+std::string_view pass_name(Pass pass);
 
 // Where the present pass writes: a framebuffer (0: the platform's), the view's rectangle in it, and
 // whether the framebuffer encodes sRGB on write.
@@ -29,9 +32,9 @@ struct PassContext {
   const SceneGpu& scene;
   ViewTargets& targets;
   const View& view;
-  gl::FrameTimer* timer = nullptr;  // null: untimed
-  std::string* gl_error = nullptr;  // the first GL error of the frame, when settings.check_errors
-  void finish_pass(int pass) const;  // error check and timer mark
+  gl::FrameTimer* timer = nullptr;    // null: untimed
+  std::string* gl_error = nullptr;    // the first GL error of the frame, when settings.check_errors
+  void finish_pass(Pass pass) const;  // error check and timer mark
 };
 
 void depth_prepass(const PassContext& context);

@@ -59,7 +59,7 @@ class Programs {
   // The shaded image's two are built by build(); the debug outputs' on first use.
   const gl::Program* present(Picture output, bool srgb, std::string& error);
   gl::VertexArray empty_vertex_array;  // the present pass has no attributes; core GL still wants a VAO
-  gl::Texture white;  // stands in for a missing base colour texture when untextured_variant is off
+  gl::Texture white;                   // stands in for a missing base colour texture when untextured_variant is off
 
  private:
   gl::ProgramCache* cache_ = nullptr;

@@ -1,8 +1,8 @@
 #pragma once
 // Read-backs for output, dumps and tests: they wait for the GPU, so never in the frame loop.
 // Rows come bottom-up (GL order) except where a function says otherwise.
-#include "render/programs.h"
 #include "render/passes.h"
+#include "render/programs.h"
 #include "render/view.h"
 #include "render/view_targets.h"
 

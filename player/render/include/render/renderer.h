@@ -22,8 +22,9 @@
 namespace render {
 
 struct PassTimes {
-  std::array<double, kPassCount> ms{};  // negative: the pass did not run
+  std::array<double, kPassCount> ms{};  // by Pass; negative: the pass did not run
   bool gpu_timed = false;               // false: CPU time around glFinish
+  double operator[](Pass pass) const { return ms[static_cast<size_t>(pass)]; }
 };
 
 class Renderer {
@@ -52,10 +53,13 @@ class Renderer {
   std::vector<float> read_linear_depth() const { return render::read_linear_depth(targets()); }
   std::vector<glm::vec3> read_view_normals() const { return render::read_view_normals(targets()); }
   std::vector<glm::vec3> read_view_face_normals() const { return render::read_view_face_normals(targets()); }
-  std::vector<glm::vec2> read_ao_raw() const;      // at the AO resolution (half with half_resolution)
-  std::vector<glm::vec2> read_ao_blurred() const;  // ditto, what the present pass reads: blurred, else the temporal average, else raw
+  std::vector<glm::vec2> read_ao_raw() const;  // at the AO resolution (half with half_resolution)
+  std::vector<glm::vec2> read_ao_blurred()
+      const;  // ditto, what the present pass reads: blurred, else the temporal average, else raw
   std::vector<glm::vec2> read_ao_final() const;
-  std::vector<float> read_history_frames() const { return render::read_history_frames(targets()); }        // full resolution: what the present pass used
+  std::vector<float> read_history_frames() const {
+    return render::read_history_frames(targets());
+  }  // full resolution: what the present pass used
 
   const shared_layout::SsaoParams& ssao_params() const { return targets().ssao_params; }
   const shared_layout::BlurParams& blur_params(int direction) const { return targets().blur_params[direction]; }

@@ -26,6 +26,8 @@ shared_layout::UpsampleParams pack_upsample_params(const ViewTargets& targets);
 shared_layout::ModuleParams pack_module_params(const ModuleView& view);
 
 // 1 / far as the shaders get it: the AO's g channel and the present pass's depths are depth / far.
-inline float inverse_far(const View& view) { return static_cast<float>(1.0 / view.far); }
+inline float inverse_far(const View& view) {
+  return static_cast<float>(1.0 / view.far);
+}
 
 }  // namespace render

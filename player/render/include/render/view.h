@@ -16,7 +16,7 @@ namespace render {
 struct ModuleView {
   lightfield::Module module;
   lightfield::RoiTransform roi;
-  double seed_cell = 1.0;  // world size of the cells that share one sample turn in every module
+  double seed_cell = 1.0;    // world size of the cells that share one sample turn in every module
   bool pixel_turns = false;  // turn samples by pixel tile instead (lfbench measures the difference)
 };
 
@@ -24,7 +24,7 @@ struct View {
   glm::dmat4 view{1.0};        // world -> view space (camera at the origin, looking along -Z)
   glm::dmat4 projection{1.0};  // view -> clip; any frustum, symmetric or not
   double near = 0.1, far = 100.0;
-  glm::dvec3 eye{0.0};         // the centre of projection in world space
+  glm::dvec3 eye{0.0};               // the centre of projection in world space
   std::optional<ModuleView> module;  // set: a light field module (see ModuleView)
 };
 

@@ -17,8 +17,8 @@ class ViewTargets {
   // `srgb_target`: the framebuffer the view is presented into encodes sRGB itself.
   // `modules`: the targets of light field modules (a positions texture for Algorithm 2, the
   // module's uniform block, the LIGHTFIELD_MODULES programs).
-  bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                 bool srgb_target, std::string& error, bool modules = false);
+  bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius, bool srgb_target,
+                 std::string& error, bool modules = false);
   // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
   void reset_history();
 

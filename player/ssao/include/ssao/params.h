@@ -22,20 +22,20 @@ std::optional<Precision> parse_precision(std::string_view text);
 struct AoSettings {
   Estimator estimator = Estimator::horizon;
   Precision precision = Precision::highp;
-  int samples = 30;                   // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
+  int samples = 30;  // per radius, 1..64 (horizon: taps per pixel, slices = samples / (2 steps))
   // Horizon: taps on each side of a slice, 1..32 (at most samples / 2): one 1.6 pixels from the point,
   // the rest spread evenly to the radius. The horizon is the highest of the taps, so too few of them
   // miss it and the AO comes out too light (docs/ao.md, "The bias"). Three slices of five: accumulation
   // over frames turns the slices, and no frame has taps to spare for a fourth (docs/ao.md, "AO in motion").
   int steps = 5;
-  int radii = 1;                      // 1..5, from the radius table, largest first
+  int radii = 1;  // 1..5, from the radius table, largest first
   Pattern pattern = Pattern::poisson;
-  float bias = 0.03f;                 // depth bias as a fraction of each radius
-  bool half_resolution = true;        // AO at half width and height, then depth-aware upsampling
+  float bias = 0.03f;           // depth bias as a fraction of each radius
+  bool half_resolution = true;  // AO at half width and height, then depth-aware upsampling
   // Large radii read coarser levels of the depth chain. Off by default: on llvmpipe, where it was
   // measured, building the chain costs more than the coarser reads save (docs/ao.md, "Run time against error").
   bool depth_chain = false;
-  bool skip_radii = true;             // drop radii under a pixel or far beyond the scene, per frame
+  bool skip_radii = true;  // drop radii under a pixel or far beyond the scene, per frame
   // Background pixels return after one depth read (whole work groups of them at once). Off only to
   // measure what that saves (aobench's background=shade): the estimator then runs there as if a
   // surface stood at the far plane, and the result is still 0.
@@ -51,9 +51,9 @@ std::optional<Blur> parse_blur(std::string_view text);
 
 struct BlurSettings {
   Blur mode = Blur::off;
-  int radius = 4;                     // taps each side, 1..BLUR_MAX_RADIUS
-  float sigma = 2.0f;                 // Gaussian sigma in pixels
-  float depth_tolerance = 0.05f;      // bilateral, denoise: depth difference, relative to depth, that halves trust
+  int radius = 4;                 // taps each side, 1..BLUR_MAX_RADIUS
+  float sigma = 2.0f;             // Gaussian sigma in pixels
+  float depth_tolerance = 0.05f;  // bilateral, denoise: depth difference, relative to depth, that halves trust
 };
 
 // The horizon estimator's taps on each side of a slice (`steps`, at most samples / 2); ssao.comp

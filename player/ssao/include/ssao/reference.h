@@ -28,9 +28,8 @@ DepthChain build_depth_chain(const std::vector<float>& linear_depth, int width, 
 // ssao.comp declares SAMPLE_PRECISION (per-sample offsets and depth differences, per-tap offsets and
 // horizons) to half floats.
 std::vector<AoTexel> reference_ssao(const DepthChain& depth, const std::vector<glm::vec3>& view_normals,
-                                    const std::vector<glm::vec3>& view_face_normals,
-                                    const shared_layout::SsaoParams& params, float inverse_far, Estimator estimator,
-                                    bool mediump = false);
+                                    const std::vector<glm::vec3>& view_face_normals, const shared_layout::SsaoParams& params,
+                                    float inverse_far, Estimator estimator, bool mediump = false);
 // `mode` gaussian, bilateral or denoise; denoise reads `view_normals` (full resolution, as for
 // reference_ssao) at each AO texel's full-resolution pixel.
 std::vector<AoTexel> reference_blur(const std::vector<AoTexel>& source, const shared_layout::BlurParams& params, Blur mode,

@@ -61,7 +61,9 @@ glm::dvec3 cosine_hemisphere_point(glm::dvec2 xi);
 //  hemisphere: cosine-weighted directions about +Z with shell radii, in the normal's frame;
 //  horizon:    (u1, u2, 0) in [0, 1)^2: slice-angle and step jitter of each slice.
 std::vector<glm::dvec3> make_kernel(Estimator estimator, Pattern pattern, int n);
-inline std::vector<glm::dvec3> make_kernel(Pattern pattern, int n) { return make_kernel(Estimator::sphere, pattern, n); }
+inline std::vector<glm::dvec3> make_kernel(Pattern pattern, int n) {
+  return make_kernel(Estimator::sphere, pattern, n);
+}
 
 // Per-pixel turns about the view axis, a 4x4 tile in Bayer order so neighbours differ most.
 std::vector<double> make_rotation_angles();

@@ -28,11 +28,11 @@ struct Dump {
   View view;
   glm::dmat4 view_matrix{1.0}, projection{1.0};
   double near = 0.0, far = 0.0;
-  int samples = 0;            // SSAO samples per radius
-  double bias_fraction = 0.0; // SSAO depth bias as a fraction of each radius
+  int samples = 0;             // SSAO samples per radius
+  double bias_fraction = 0.0;  // SSAO depth bias as a fraction of each radius
   std::string pattern, blur;
-  Image depth;                // 1 channel: linear view depth, 0 on background
-  Image ao_raw, ao_blurred;   // 1 channel each
+  Image depth;               // 1 channel: linear view depth, 0 on background
+  Image ao_raw, ao_blurred;  // 1 channel each
 };
 
 // Reads DIR/camera.json and the five EXRs, checking every field and image size it uses. Returns

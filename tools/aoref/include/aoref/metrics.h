@@ -11,23 +11,23 @@
 namespace aoref {
 
 struct MetricsSettings {
-  int edge_distance = 3;      // pixels (Chebyshev distance) around a depth edge that count as "near the edge"
-  double edge_jump = 0.05;    // a depth edge: neighbouring depths differ by more than this fraction of the nearer
-  double ssim_sigma = 1.5;    // Gaussian window of SSIM (Wang et al. 2004), truncated at ssim_radius
-  int ssim_radius = 5;        // 11 x 11 window
-  int noise_radius = 2;       // the box blur of Metrics::noise: 5 x 5
+  int edge_distance = 3;    // pixels (Chebyshev distance) around a depth edge that count as "near the edge"
+  double edge_jump = 0.05;  // a depth edge: neighbouring depths differ by more than this fraction of the nearer
+  double ssim_sigma = 1.5;  // Gaussian window of SSIM (Wang et al. 2004), truncated at ssim_radius
+  int ssim_radius = 5;      // 11 x 11 window
+  int noise_radius = 2;     // the box blur of Metrics::noise: 5 x 5
 };
 
 struct Metrics {
   double mae = 0.0, rmse = 0.0;
-  double bias = 0.0;       // mean of estimate - reference: the sign of a systematic error
-  double ssim = 1.0;       // mean SSIM over object pixels, dynamic range 1 (AO is in [0, 1])
-  double edge_mae = 0.0;   // MAE over object pixels within edge_distance of a depth edge; NaN when there are none
+  double bias = 0.0;      // mean of estimate - reference: the sign of a systematic error
+  double ssim = 1.0;      // mean SSIM over object pixels, dynamic range 1 (AO is in [0, 1])
+  double edge_mae = 0.0;  // MAE over object pixels within edge_distance of a depth edge; NaN when there are none
   // The error's high-frequency part: mean |e - box(e)| with e = estimate - reference and box the
   // mean of e over the object pixels of the noise_radius window (5 x 5). Per-pixel noise and dither
   // patterns show here; a smooth bias does not.
   double noise = 0.0;
-  size_t pixels = 0;       // object pixels compared; with none, every figure is NaN
+  size_t pixels = 0;  // object pixels compared; with none, every figure is NaN
   size_t edge_pixels = 0;
 };
 

@@ -23,15 +23,15 @@
 namespace aoref {
 
 enum class Reference { near_field, sphere };
-std::string_view name(Reference reference);                     // "near-field", "sphere"
+std::string_view name(Reference reference);  // "near-field", "sphere"
 std::optional<Reference> parse_reference(std::string_view text);
 
 struct ReferenceSettings {
   Reference reference = Reference::sphere;
-  int rays = 512;          // per pixel; for `sphere` per pixel and per radius. 1 .. 1 << 20
-  double radius = 0.0;     // near_field only: 0 takes the view's largest radius
-  uint64_t seed = 1;       // with the pixel index, seeds each pixel's sample shift: runs are reproducible
-  int threads = 0;         // 0: one per hardware thread
+  int rays = 512;       // per pixel; for `sphere` per pixel and per radius. 1 .. 1 << 20
+  double radius = 0.0;  // near_field only: 0 takes the view's largest radius
+  uint64_t seed = 1;    // with the pixel index, seeds each pixel's sample shift: runs are reproducible
+  int threads = 0;      // 0: one per hardware thread
   // Called on the calling thread about ten times a second and once at the end: rows done, rows.
   std::function<void(int, int)> progress;
 };
@@ -43,7 +43,7 @@ struct ReferenceResult {
   // radii can be merged by max without tracing again. near_field: one image, equal to `ao`.
   std::vector<Image> per_radius;
   double max_standard_error = 0.0, mean_standard_error = 0.0;  // over object pixels
-  size_t object_pixels = 0;  // traced: object pixels with a usable normal
+  size_t object_pixels = 0;                                    // traced: object pixels with a usable normal
   uint64_t rays_traced = 0;
 };
 
@@ -55,7 +55,7 @@ struct ReferenceResult {
 double surface_epsilon(double scene_radius, const glm::dvec3& point);
 
 // Returns false and says why (bad settings or view) in `error`; nothing is traced then.
-bool compute_reference(const RayScene& scene, const View& view, const ReferenceSettings& settings,
-                       ReferenceResult& out, std::string& error);
+bool compute_reference(const RayScene& scene, const View& view, const ReferenceSettings& settings, ReferenceResult& out,
+                       std::string& error);
 
 }  // namespace aoref

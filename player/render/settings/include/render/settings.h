@@ -35,7 +35,7 @@ struct FrameSettings {
   bool ao = true;
   ssao::AoSettings ao_settings;
   ssao::BlurSettings blur;
-  float radius = 0.0f;        // base AO radius in world units; 0: a tenth of the scene's bounding radius
+  float radius = 0.0f;  // base AO radius in world units; 0: a tenth of the scene's bounding radius
   Picture output = Picture::color;
   Prepass prepass = Prepass::automatic;
   bool reuse_static_ao = true;  // while camera and scene stand still, keep the last frame's AO
@@ -51,14 +51,14 @@ struct FrameSettings {
   // what that saves (aobench's untextured-variant=off): they then sample a 1x1 white texture.
   bool untextured_variant = true;
   glm::vec3 background{0.05f, 0.06f, 0.08f};  // linear RGB of empty pixels
-  bool check_errors = false;    // glGetError after each pass (tests, debug runs)
+  bool check_errors = false;                  // glGetError after each pass (tests, debug runs)
 };
 
 // One key of the codec.
 struct SettingKey {
-  std::string_view key;      // also the long option: --key
-  std::string_view help;     // for --help
-  std::string choices;       // "on|off", "1..64", ...: what a value must be
+  std::string_view key;   // also the long option: --key
+  std::string_view help;  // for --help
+  std::string choices;    // "on|off", "1..64", ...: what a value must be
 };
 std::span<const SettingKey> setting_keys();
 

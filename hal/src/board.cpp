@@ -1,10 +1,15 @@
 #include "hal/board.h"
 
-#include <toml++/toml.h>
-#include <fstream>
-#include <sstream>
-
 #include "base/names.h"
+#include "base/read_file.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+#include <string_view>
 
 namespace hal {
 
@@ -49,20 +54,49 @@ std::string action_names() {
 
 namespace {
 
-// Typed field access whose errors name the file, the field and what was expected.
+// What a value is, for "got ...": the value itself where it is a scalar, else its type.
+std::string describe(const toml::node& node) {
+  std::ostringstream text;
+  if (node.is_string())
+    text << "'" << node.as_string()->get() << "'";
+  else if (node.is_integer())
+    text << node.as_integer()->get();
+  else if (node.is_floating_point()) {
+    text << node.as_floating_point()->get();
+    // 720.0 is not the integer 720: say it is a float.
+    if (text.str().find_first_of(".eni") == std::string::npos) text << ".0";
+  } else if (node.is_boolean())
+    text << (node.as_boolean()->get() ? "true" : "false");
+  else
+    text << node.type();
+  return text.str();
+}
+
+std::string position(const std::string& source, const toml::source_region& where) {
+  return source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
+}
+
+// Typed field access whose errors name the file, line and column, the field, what was expected and
+// what was there, as playlists and display files do.
 class Fields {
  public:
   Fields(const toml::table& t, std::string source, std::string prefix)
       : t_(t), source_(std::move(source)), prefix_(std::move(prefix)) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const {
-    std::string got = "nothing";
-    if (const toml::node* n = t_.get(key)) {
-      std::ostringstream os;
-      os << n->type();
-      got = os.str();
+    const toml::node* n = t_.get(key);
+    throw ConfigError(position(source_, n != nullptr ? n->source() : t_.source()) + ": " + prefix_ + key + ": expected " +
+                      expected + ", got " + (n != nullptr ? describe(*n) : "nothing"));
+  }
+  // A key the format does not have is an error, not ignored: a typo would otherwise do nothing.
+  void only(std::initializer_list<std::string_view> keys) const {
+    for (const auto& [key, node] : t_) {
+      if (std::find(keys.begin(), keys.end(), key.str()) != keys.end()) continue;
+      std::string list;
+      for (std::string_view name : keys) list += (list.empty() ? "" : ", ") + std::string(name);
+      throw ConfigError(position(source_, node.source()) + ": " + prefix_ + std::string(key.str()) +
+                        ": unknown key (expected one of " + list + ")");
     }
-    throw ConfigError(source_ + ": " + prefix_ + key + ": expected " + expected + ", got " + got);
   }
   std::string str(const std::string& key, std::string fallback, bool required = false) const {
     const toml::node* n = t_.get(key);
@@ -94,6 +128,22 @@ class Fields {
  private:
   const toml::table& t_;
   std::string source_, prefix_;
+};
+
+// One GPIO line serves one button or one LED: the kernel grants a line to one request, so a line
+// named twice would fail on the board, or (an LED driving a button's input) misbehave silently.
+class LineOwners {
+ public:
+  void claim(const Fields& f, const GpioLine& line, const std::string& owner) {
+    const std::string key = line.line_name.empty() ? line.chip + ":" + std::to_string(line.offset) : "name " + line.line_name;
+    const auto [it, fresh] = owners_.emplace(key, owner);
+    if (!fresh)
+      f.fail(line.line_name.empty() ? "offset" : "line",
+             "a GPIO line no other button or LED uses (" + it->second + " uses " + line.describe() + ")");
+  }
+
+ private:
+  std::map<std::string, std::string> owners_;
 };
 
 GpioLine read_line(const Fields& f) {
@@ -150,8 +200,10 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     return n ? n->as_array() : nullptr;
   };
 
+  top.only({"board", "display", "buttons", "button", "led", "camera", "mock"});
   if (const auto* t = table("board")) {
     const Fields f(*t, source_name, "board.");
+    f.only({"name", "consumer", "status_file", "self_check_interval_s"});
     b.name = f.str("name", "");
     b.consumer = f.str("consumer", b.consumer);
     b.status_file = f.str("status_file", "");
@@ -159,17 +211,26 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
   }
   if (const auto* t = table("display")) {
     const Fields f(*t, source_name, "display.");
+    f.only({"rotation"});
     b.display_rotation = static_cast<int>(f.integer("rotation", 0, 0, 270));
     if (b.display_rotation % 90 != 0) f.fail("rotation", "0, 90, 180 or 270 (degrees clockwise)");
   }
+  LineOwners owners;
   ButtonTiming defaults;
-  if (const auto* t = table("buttons")) defaults = read_timing(Fields(*t, source_name, "buttons."), defaults);
+  if (const auto* t = table("buttons")) {
+    const Fields f(*t, source_name, "buttons.");
+    f.only({"debounce_ms", "long_press_ms", "repeat_delay_ms", "repeat_interval_ms"});
+    defaults = read_timing(f, defaults);
+  }
   if (const auto* a = array("button")) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const Fields f(*a->get(i)->as_table(), source_name, "button[" + std::to_string(i) + "].");
+      f.only({"name", "line", "chip", "offset", "active_low", "bias", "debounce_ms", "long_press_ms", "repeat_delay_ms",
+              "repeat_interval_ms", "action", "long_press_action", "key"});
       ButtonConfig c;
       c.name = f.str("name", "", true);
       c.line = read_line(f);
+      owners.claim(f, c.line, "button '" + c.name + "'");
       c.timing = read_timing(f, defaults);
       for (const ButtonDefault& d : kButtonDefaults)
         if (d.name == c.name) {
@@ -189,14 +250,17 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
   if (const auto* a = array("led")) {
     for (std::size_t i = 0; i < a->size(); ++i) {
       const Fields f(*a->get(i)->as_table(), source_name, "led[" + std::to_string(i) + "].");
+      f.only({"name", "line", "chip", "offset", "active_low", "bias"});
       LedConfig c;
       c.name = f.str("name", "", true);
       c.line = read_line(f);
+      owners.claim(f, c.line, "LED '" + c.name + "'");
       b.leds.push_back(std::move(c));
     }
   }
   if (const auto* t = table("camera")) {
     const Fields f(*t, source_name, "camera.");
+    f.only({"device", "width", "height", "format", "buffers", "reopen_interval_ms", "frame_timeout_ms"});
     CameraConfig c;
     c.device = f.str("device", "", true);
     c.width = static_cast<int>(f.integer("width", c.width, 16, 8192));
@@ -209,6 +273,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
   }
   if (const auto* t = table("mock")) {
     const Fields f(*t, source_name, "mock.");
+    f.only({"button_script", "camera_images"});
     b.mock_button_script = resolve(source_name, f.str("button_script", ""));
     if (const toml::node* n = t->get("camera_images")) {
       const toml::array* imgs = n->as_array();
@@ -256,11 +321,9 @@ BoardConfig builtin_mock_board() {
 }
 
 BoardConfig load_board(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open board file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_board(ss.str(), path);
+  std::string text, error;
+  if (!base::read_regular_file(path, "board file", kMaxBoardFileBytes, text, error)) throw ConfigError(error);
+  return parse_board(text, path);
 }
 
 }  // namespace hal

@@ -1,4 +1,5 @@
 #include "hal/devices.h"
+#include "base/read_file.h"
 
 #include <fstream>
 #include <sstream>
@@ -54,11 +55,10 @@ Devices open_devices(const BoardConfig& board, Backend backend, const Clock& clo
   for (const auto& b : board.buttons) specs.push_back({b.name, b.timing});
   std::vector<ScriptStep> script;
   if (!board.mock_button_script.empty()) {
-    std::ifstream in(board.mock_button_script);
-    if (!in) throw ConfigError(board.source + ": mock.button_script: cannot open '" + board.mock_button_script + "'");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    script = parse_button_script(ss.str(), board.mock_button_script);
+    std::string text, error;
+    if (!base::read_regular_file(board.mock_button_script, "button script", kMaxScriptBytes, text, error))
+      throw ConfigError(board.source + ": mock.button_script: " + error);
+    script = parse_button_script(text, board.mock_button_script);
   }
   auto buttons = std::make_unique<MockButtons>(std::move(specs), std::move(script), clock);
   d.mock_buttons = buttons.get();

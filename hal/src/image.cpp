@@ -1,5 +1,8 @@
 #include "hal/image.h"
 
+#include "base/read_file.h"
+
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -7,17 +10,34 @@
 namespace hal {
 
 bool load_image(const std::string& path, RgbImage& out, std::string* error) {
-  auto in = OIIO::ImageInput::open(path);
+  // Read by the one function that refuses FIFOs and devices, then decoded from memory: OIIO would
+  // open the path itself and wait on a FIFO.
+  std::string bytes, why;
+  if (!base::read_regular_file(path, "image", kMaxImageFileBytes, bytes, why)) {
+    if (error) *error = why;
+    return false;
+  }
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  auto in = OIIO::ImageInput::open(path, nullptr, &memory);
   if (!in) {
     if (error) *error = path + ": cannot open image: " + OIIO::geterror();
     return false;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  const int channels = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || channels < 1) {
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 1) {
     if (error) *error = path + ": expected a non-empty image with at least one channel";
     return false;
   }
+  // The header's size is checked before any pixel is allocated: a PNG can claim 60000x60000.
+  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide ||
+      static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height) > kMaxImagePixels) {
+    if (error)
+      *error = path + ": the image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "; at most " +
+               std::to_string(kMaxImageSide) + " pixels per side and " + std::to_string(kMaxImagePixels / 1000000) +
+               " million pixels are read";
+    return false;
+  }
+  const int channels = std::min(spec.nchannels, 3);  // grey, RGB; alpha and beyond are not looked at
   std::vector<std::uint8_t> raw(static_cast<std::size_t>(spec.width) * spec.height * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data())) {
     if (error) *error = path + ": cannot read pixels: " + in->geterror();

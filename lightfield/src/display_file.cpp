@@ -1,6 +1,7 @@
 #include "lightfield/display_file.h"
 
 #include "base/parse.h"
+#include "base/read_file.h"
 
 #include <toml++/toml.h>
 #include <nlohmann/json.hpp>
@@ -195,6 +196,16 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
   const glm::ivec2 resolution = modules.size("resolution", kMaxImageSide, "each module's image size");
   out.width = resolution.x;
   out.height = resolution.y;
+  // Every module's image goes into one montage texture: its size is checked here, before anything
+  // is allocated, rather than found out by the GPU as an incomplete framebuffer.
+  const glm::ivec2 grid = montage_grid(static_cast<int>(out.module_x.size()));
+  const long long montage_width = static_cast<long long>(grid.x) * resolution.x;
+  const long long montage_height = static_cast<long long>(grid.y) * resolution.y;
+  if (montage_width > kMaxImageSide || montage_height > kMaxImageSide)
+    modules.fail("resolution", "a montage of at most " + std::to_string(kMaxImageSide) +
+                                   " pixels per side: " + std::to_string(out.module_x.size()) + " modules of this size make " +
+                                   std::to_string(montage_width) + "x" + std::to_string(montage_height) + " (" +
+                                   std::to_string(grid.x) + "x" + std::to_string(grid.y) + " modules)");
   out.footprint = {-out.screen_width * 0.5, out.screen_width * 0.5};
   if (modules.has("footprint")) {
     const std::vector<double> f = modules.numbers("footprint", 2, 2, "two numbers [x0, x1] with x0 < x1");
@@ -241,12 +252,10 @@ void read_quilt(const Fields& top, const std::string& path, Display& out) {
   out.quilt.view_height = view.y;
   const std::filesystem::path relative(calibration);
   out.calibration_path = relative.is_absolute() ? calibration : (std::filesystem::path(path).parent_path() / relative).string();
-  std::ifstream file(out.calibration_path, std::ios::binary);
-  if (!file) top.fail("calibration", "a readable file (" + out.calibration_path + " cannot be opened)");
-  std::stringstream text;
-  text << file.rdbuf();
-  std::string error;
-  if (!parse_calibration(text.str(), out.calibration_path, out.quilt.calibration, error)) throw Failure{error};
+  std::string text, error;
+  if (!base::read_regular_file(out.calibration_path, "calibration", kMaxDisplayFileBytes, text, error))
+    top.fail("calibration", "a readable regular file (" + error + ")");
+  if (!parse_calibration(text, out.calibration_path, out.quilt.calibration, error)) throw Failure{error};
 }
 
 }  // namespace
@@ -277,14 +286,9 @@ bool parse_display(std::string_view text, const std::string& path, Display& out,
 }
 
 bool load_display(const std::string& path, Display& out, std::string& error) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    error = path + ": cannot open the display file";
-    return false;
-  }
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse_display(text.str(), path, out, error);
+  std::string text;
+  if (!base::read_regular_file(path, "display file", kMaxDisplayFileBytes, text, error)) return false;
+  return parse_display(text, path, out, error);
 }
 
 bool parse_calibration(std::string_view text, const std::string& source, Calibration& out, std::string& error) {

@@ -3,9 +3,13 @@
 #include "base/errno_text.h"
 #include "base/names.h"
 #include "base/parse.h"
+#include "base/read_file.h"
 #include "base/unique_fd.h"
 
 #include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -13,6 +17,8 @@
 #include <cerrno>
 #include <climits>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 
@@ -135,6 +141,90 @@ TEST(BaseNames, OneTableNamesParsesAndLists) {
   EXPECT_EQ(base::names_text(kColours, " or "), "red, green or blue");
   EXPECT_EQ(base::join_names({"one"}, " or "), "one");
   EXPECT_EQ(base::join_names({}, " or "), "");
+}
+
+// A folder of its own per test, removed after it.
+class BaseReadFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("base-read-file-" + std::to_string(::getpid()) + "-" +
+                                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const char* name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(BaseReadFile, ReadsARegularFileWholeAndThroughALink) {
+  const std::string text = std::string("first line\n") + std::string(100000, 'x') + '\0' + "after a zero byte";
+  std::ofstream(path("playlist.toml"), std::ios::binary) << text;
+  std::filesystem::create_symlink(path("playlist.toml"), path("link.toml"));
+  for (const char* name : {"playlist.toml", "link.toml"}) {
+    std::string out, error;
+    ASSERT_TRUE(base::read_regular_file(path(name), "playlist", base::kMiB, out, error)) << error;
+    EXPECT_EQ(out, text);
+    EXPECT_EQ(error, "");
+  }
+  std::ofstream(path("empty.toml")).close();
+  std::string out = "stale", error;
+  ASSERT_TRUE(base::read_regular_file(path("empty.toml"), "playlist", base::kMiB, out, error)) << error;
+  EXPECT_EQ(out, "");
+}
+
+// What would block (a FIFO with no writer) or never end (a device) is refused before any read,
+// each saying what it is; the test would hang on the FIFO if the open or the read blocked.
+TEST_F(BaseReadFile, RefusesEveryKindThatIsNotARegularFile) {
+  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
+  std::filesystem::create_directories(path("folder"));
+  base::UniqueFd listener(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  const std::string socket_path = path("socket");
+  ASSERT_LT(socket_path.size(), sizeof address.sun_path);
+  socket_path.copy(address.sun_path, socket_path.size());
+  ASSERT_EQ(::bind(listener.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+  std::filesystem::create_symlink(path("fifo"), path("link-to-fifo"));
+  const std::pair<std::string, std::string> cases[] = {
+      {path("fifo"), "a FIFO"},
+      {path("link-to-fifo"), "a FIFO"},
+      {path("folder"), "a folder"},
+      {"/dev/zero", "a character device"},
+      {"/dev/null", "a character device"},
+  };
+  for (const auto& [file, kind] : cases) {
+    std::string out = "stale", error;
+    EXPECT_FALSE(base::read_regular_file(file, "calibration", base::kMiB, out, error)) << file;
+    EXPECT_EQ(error, file + ": the calibration is " + kind + ", not a regular file");
+    EXPECT_EQ(out, "stale");  // nothing read, nothing changed
+    error.clear();
+    EXPECT_FALSE(base::check_regular_file(file, "calibration", base::kMiB, error)) << file;
+    EXPECT_EQ(error, file + ": the calibration is " + kind + ", not a regular file");
+  }
+  // A socket file cannot be opened at all; it is still refused, with the system's reason.
+  std::string out, error;
+  EXPECT_FALSE(base::read_regular_file(socket_path, "board file", base::kMiB, out, error));
+  EXPECT_EQ(error.rfind(socket_path + ": cannot open the board file (", 0), 0u) << error;
+}
+
+TEST_F(BaseReadFile, RefusesAFileOverItsLimitBeforeReadingIt) {
+  std::ofstream(path("big.json"), std::ios::binary) << std::string(3 * base::kKiB + 1, 'a');
+  std::string out, error;
+  EXPECT_FALSE(base::read_regular_file(path("big.json"), "calibration", 3 * base::kKiB, out, error));
+  EXPECT_EQ(error, path("big.json") + ": the calibration is 3.0 KiB (3073 bytes); at most 3.0 KiB (3072 bytes) is read");
+  EXPECT_TRUE(base::read_regular_file(path("big.json"), "calibration", 3 * base::kKiB + 1, out, error)) << error;
+  EXPECT_EQ(out.size(), 3 * base::kKiB + 1);
+  error.clear();
+  EXPECT_FALSE(base::read_regular_file(path("missing.toml"), "display file", base::kMiB, out, error));
+  EXPECT_EQ(error, path("missing.toml") + ": cannot open the display file (No such file or directory)");
+}
+
+TEST(BaseByteSize, SaysSizesAsPeopleReadThem) {
+  EXPECT_EQ(base::byte_size_text(0), "0 bytes");
+  EXPECT_EQ(base::byte_size_text(1023), "1023 bytes");
+  EXPECT_EQ(base::byte_size_text(1024), "1.0 KiB");
+  EXPECT_EQ(base::byte_size_text(64 * base::kMiB), "64.0 MiB");
+  EXPECT_EQ(base::byte_size_text(3 * base::kGiB / 2), "1.5 GiB");
 }
 
 }  // namespace

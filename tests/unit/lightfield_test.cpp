@@ -335,8 +335,8 @@ TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
                 ": screenH: expected an object {\"value\": number (an integer in 1..16384)}, got \"value\" of type string");
   EXPECT_FALSE(lightfield::parse_display(
       "type = \"quilt\"\ncalibration = \"absent.json\"\nquilt = \"2x2\"\nview_size = \"50x25\"\n", display_path, display, error));
-  EXPECT_EQ(error, display_path + ":2:15: calibration: expected a readable file (" + (dir / "absent.json").string() +
-                       " cannot be opened), got 'absent.json'");
+  EXPECT_EQ(error, display_path + ":2:15: calibration: expected a readable regular file (" + (dir / "absent.json").string() +
+                       ": cannot open the calibration (No such file or directory)), got 'absent.json'");
   EXPECT_FALSE(lightfield::parse_display("type = \"quilt\"\ncalibration = \"v.json\"\nquilt = \"65x2\"\nview_size = \"50x25\"\n",
                                          display_path, display, error));
   EXPECT_EQ(error, display_path + ":3:9: quilt: expected columns x rows of views as \"WxH\", each 1..64, got '65x2'");

@@ -395,14 +395,14 @@ TEST(Playlist, MissingFile) {
   Playlist pl;
   std::string error;
   EXPECT_FALSE(load_playlist("/nonexistent/list.toml", options(), pl, error));
-  EXPECT_EQ(error, "/nonexistent/list.toml: cannot open playlist (No such file or directory)");
+  EXPECT_EQ(error, "/nonexistent/list.toml: cannot open the playlist (No such file or directory)");
 }
 
 TEST(Playlist, DirectoryIsNotAPlaylist) {
   Playlist pl;
   std::string error;
   EXPECT_FALSE(load_playlist(test_dir, options(), pl, error));
-  EXPECT_EQ(error, test_dir + ": cannot open playlist (Is a directory)");
+  EXPECT_EQ(error, test_dir + ": the playlist is a folder, not a regular file");
 }
 
 TEST(Playlist, SyntaxErrorInAFileNamesTheFile) {

@@ -270,6 +270,25 @@ TEST(Timeline, AStallOfDecadesOverTinyItemsIsArithmetic) {
   check(tl, {{0.1, 0, 0.1}, {1e9 + 0.625, 1, 0.125}});
 }
 
+// A scene that fails marks every item naming it, and may be marked again when it fails again: the
+// count and the cycle of playable items are kept up item by item (a playlist of 100,000 items once
+// summed them all per mark), so marking twice, or back and forth, must leave them as a fresh mark.
+TEST(Timeline, MarkingAnItemTwiceOrBackAndForthKeepsTheCycle) {
+  Timeline fresh(make({4, 6, 10}), t0, wall0), marked(make({4, 6, 10}), t0, wall0);
+  fresh.set_playable(1, false);
+  for (bool playable : {false, false, true, true, false, false}) marked.set_playable(1, playable);
+  marked.set_playable(7, false);  // no such item: nothing changes
+  marked.set_playable(-1, true);
+  // The cycle is 14 s in both; a stall of 36020 s lands on the same item at the same time.
+  check(fresh, {{1, 0, 1}, {36021, 2, 9}});
+  check(marked, {{1, 0, 1}, {36021, 2, 9}});
+  // Every item unplayable, then one back: it alone plays, pass after pass.
+  Timeline one(make({4, 6, 10}), t0, wall0);
+  for (int item : {0, 1, 2, 2}) one.set_playable(item, false);
+  one.set_playable(2, true);
+  check(one, {{1, 2, 1}, {10003, 2, 3}});
+}
+
 TEST(Timeline, StallLandsWhereSteppingLands) {
   Playlist pl = make({1, 2, 3, 0.5, 1.5});
   pl.shuffle = true;

@@ -70,6 +70,11 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The largest board file and mock script (button or camera) read, in bytes; anything else than a
+// regular file is refused too (base/read_file.h).
+inline constexpr std::size_t kMaxBoardFileBytes = 1u << 20;
+inline constexpr std::size_t kMaxScriptBytes = 16u << 20;
+
 BoardConfig load_board(const std::string& path);
 // What a Pi with three buttons (play, next, check) and two LEDs (status, error) and a camera has;
 // used when no board file is given.

@@ -1,5 +1,6 @@
 #pragma once
 // The one image type hal exchanges with the player: tightly packed 8-bit RGB, row-major, top row first.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,8 +25,15 @@ struct RgbImage {
   }
 };
 
+// What load_image reads: a regular file of at most this many bytes, whose header says at most this
+// size. A camera frame is far smaller; a header that claims more is refused before pixels are allocated.
+inline constexpr std::size_t kMaxImageFileBytes = 256u << 20;
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::uint64_t kMaxImagePixels = 64'000'000;
+
 // OpenImageIO load/save. Any channel count is accepted on load (grey is replicated, alpha dropped).
-// On failure they return false and put "<path>: <reason>" into *error.
+// A FIFO, a device or an oversized file or image is refused (base/read_file.h). On failure they
+// return false and put "<path>: <reason>" into *error.
 bool load_image(const std::string& path, RgbImage& out, std::string* error);
 bool save_image(const std::string& path, const RgbImage& image, std::string* error);
 

@@ -8,6 +8,7 @@
 #include "lightfield/modules.h"
 #include "lightfield/quilt.h"
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -24,6 +25,10 @@ struct Display {
 };
 
 // Reads and validates `path`; a quilt's calibration file is read too.
+// The largest display file and calibration (visual.json) read, in bytes; a FIFO, a device or a
+// folder is refused too (base/read_file.h).
+inline constexpr std::size_t kMaxDisplayFileBytes = 1u << 20;
+
 bool load_display(const std::string& path, Display& out, std::string& error);
 // The same from text: `path` names it in errors and locates the calibration file.
 bool parse_display(std::string_view text, const std::string& path, Display& out, std::string& error);

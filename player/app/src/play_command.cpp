@@ -4,6 +4,7 @@
 // (play/gpu_recovery.h).
 #include "app/play_command.h"
 #include "app/render_command.h"
+#include "base/read_file.h"
 #include "camera_script.h"
 
 #include "gl/caps.h"
@@ -74,10 +75,9 @@ bool load_camera_script(const PlayOptions& options, const hal::Devices& devices,
     err << "error: --camera-script drives the mock camera: add --hal mock and a board with a camera\n";
     return false;
   }
-  std::ifstream in(options.camera_script);
-  std::string error = options.camera_script + ": cannot open camera script";
-  if (!in || !parse_camera_script_text(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
-                                       options.camera_script, steps, error)) {
+  std::string text, error;
+  if (!base::read_regular_file(options.camera_script, "camera script", hal::kMaxScriptBytes, text, error) ||
+      !parse_camera_script_text(text, options.camera_script, steps, error)) {
     err << "error: " << error << "\n";
     return false;
   }

@@ -1,6 +1,7 @@
 #include "playback/playlist.h"
 
 #include "base/parse.h"
+#include "base/read_file.h"
 
 #include <toml++/toml.h>
 #include <algorithm>
@@ -477,22 +478,8 @@ bool parse_playlist(std::string_view toml_text, const std::string& source_path, 
 
 bool load_playlist(const std::string& path, const ParseOptions& options, Playlist& out, std::string& error) {
   try {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-      error = path + ": cannot open playlist (" + std::strerror(errno) + ")";
-      return false;
-    }
     std::string text;
-    char buf[8192];
-    std::size_t got = 0;
-    while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
-    const bool failed = std::ferror(f) != 0;
-    const int err = errno;
-    std::fclose(f);
-    if (failed) {
-      error = path + ": cannot open playlist (" + std::strerror(err) + ")";
-      return false;
-    }
+    if (!base::read_regular_file(path, "playlist", kMaxPlaylistBytes, text, error)) return false;
     return parse_playlist(text, path, options, out, error);
   } catch (const std::exception& e) {
     error = path + ": " + e.what();

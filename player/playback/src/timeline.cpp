@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -106,8 +107,17 @@ void Timeline::reset_playlist(Playlist playlist) {
   playable_count_ = static_cast<int>(n);
   slot_end_.resize(n);
   double end = 0;
-  for (std::size_t i = 0; i < n; ++i) slot_end_[i] = end += duration(static_cast<int>(i));
-  playable_cycle_ = end;
+  finite_cycle_ = 0;
+  infinite_playable_ = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = duration(static_cast<int>(i));
+    slot_end_[i] = end += d;
+    if (std::isfinite(d))
+      finite_cycle_ += d;
+    else
+      ++infinite_playable_;
+  }
+  playable_cycle_ = infinite_playable_ > 0 ? std::numeric_limits<double>::infinity() : finite_cycle_;
   mode_ = playlist_.schedule == Schedule::wallclock ? Mode::wallclock : Mode::sequential;
   for (auto& c : cache_) c.pass = none;
   wall_valid_ = false;
@@ -397,16 +407,22 @@ void Timeline::resume(double now) {
   paused_ = false;
 }
 
+// Constant time: a scene that fails to load marks every item naming it, and a playlist of 100,000
+// items would otherwise sum every duration once per item.
 void Timeline::set_playable(int item, bool playable) {
   if (item < 0 || static_cast<std::size_t>(item) >= playable_.size()) return;
-  playable_[static_cast<std::size_t>(item)] = playable ? 1 : 0;
-  playable_count_ = 0;
-  playable_cycle_ = 0;
-  for (std::size_t i = 0; i < playable_.size(); ++i) {
-    if (!playable_[i]) continue;
-    ++playable_count_;
-    playable_cycle_ += duration(static_cast<int>(i));
-  }
+  char& flag = playable_[static_cast<std::size_t>(item)];
+  if (flag == (playable ? 1 : 0)) return;
+  flag = playable ? 1 : 0;
+  const int sign = playable ? 1 : -1;
+  playable_count_ += sign;
+  const double d = duration(item);
+  if (std::isfinite(d))
+    finite_cycle_ += sign * d;
+  else
+    infinite_playable_ += sign;
+  if (playable_count_ == 0) finite_cycle_ = 0;  // no rounding left behind when none plays
+  playable_cycle_ = infinite_playable_ > 0 ? std::numeric_limits<double>::infinity() : finite_cycle_;
 }
 
 void Timeline::replace(Playlist playlist, double now) {

@@ -1,4 +1,5 @@
 #include "gltf_bytes.h"
+#include "base/read_file.h"
 
 #include "scene/gltf_loader.h"
 
@@ -42,7 +43,7 @@ constexpr uint32_t kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
 // rather than tinygltf saying only "file not found".
 bool confined_exists(const std::string& path, void*) {
   std::error_code ec;
-  return fs::is_regular_file(path, ec);
+  return fs::exists(path, ec);
 }
 
 std::string confined_expand(const std::string& path, void*) {
@@ -55,12 +56,12 @@ bool confined_read(std::vector<unsigned char>* out, std::string* err, const std:
     if (err) *err += "'" + path + "' lies outside the scene's folder " + confinement->root.string() + "; ";
     return false;
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    if (err) *err += "cannot open '" + path + "'; ";
+  std::string bytes, error;
+  if (!base::read_regular_file(path, "file the scene names", kMaxFileBytes, bytes, error)) {
+    if (err) *err += error + "; ";
     return false;
   }
-  out->assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  out->assign(bytes.begin(), bytes.end());
   return true;
 }
 

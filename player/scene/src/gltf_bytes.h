@@ -2,12 +2,17 @@
 // The bytes of a glTF file before tinygltf sees them: the GLB container checked and rebuilt, JSON
 // nesting bounded, and the file-system callbacks that keep every external file inside the scene's
 // folder. Errors come back as text (empty: fine), naming the byte or field at fault.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace scene::gltf {
+
+// The largest scene file, and file a scene names (a buffer, an image), that is read: GLB buffers
+// index with 32 bits, and a board's memory ends well before this.
+inline constexpr std::size_t kMaxFileBytes = std::size_t{2} << 30;
 
 struct Confinement {
   std::filesystem::path root;  // canonical folder of the scene file

@@ -1,4 +1,5 @@
 #include "scene/gltf_loader.h"
+#include "base/read_file.h"
 
 #include "gltf_accessors.h"
 #include "gltf_builder.h"
@@ -34,17 +35,17 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     return false;
   };
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) return refuse("no such file");
+  if (!fs::exists(file, ec)) return refuse("no such file");
   std::string extension = file.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension != ".gltf" && extension != ".glb") return refuse("expected a .gltf or .glb file");
   const bool binary = extension == ".glb";
 
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return refuse("cannot open the file");
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::string bytes, why;
+  if (!base::read_regular_file(name, "scene", gltf::kMaxFileBytes, bytes, why)) {
+    report.error = why;
+    report.warnings.clear();
+    return false;
   }
   if (bytes.empty())
     return refuse("not a valid glTF 2.0 file: the file is empty (0 bytes); expected glTF 2.0 " +

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <ostream>
 
+#include <unordered_set>
+
 namespace app {
 
 SceneCache::SceneCache(Loader& loader, const gl::Caps& caps, StatusReporter& status, std::ostream& err)
@@ -14,11 +16,8 @@ SceneCache::SceneCache(Loader& loader, const gl::Caps& caps, StatusReporter& sta
 void SceneCache::set_playlist(const playback::Playlist& playlist, playback::Timeline* timeline) {
   keys_.clear();
   for (const playback::Item& item : playlist.items) keys_.push_back(load_key(item));
-  for (auto it = scenes_.begin(); it != scenes_.end();) {
-    bool used = false;
-    for (const std::string& key : keys_) used = used || key == it->first;
-    it = used ? std::next(it) : scenes_.erase(it);
-  }
+  const std::unordered_set<std::string> used(keys_.begin(), keys_.end());
+  for (auto it = scenes_.begin(); it != scenes_.end();) it = used.count(it->first) > 0 ? std::next(it) : scenes_.erase(it);
   if (timeline == nullptr) return;
   for (size_t i = 0; i < keys_.size(); ++i) {
     auto found = scenes_.find(keys_[i]);

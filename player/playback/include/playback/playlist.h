@@ -83,7 +83,10 @@ struct ParseOptions {
 // loads it); only the content-root rule is checked. On failure `out` is left unchanged.
 bool parse_playlist(std::string_view toml_text, const std::string& source_path, const ParseOptions& options, Playlist& out,
                     std::string& error);
-// Reads and parses a playlist file; "<file>: cannot open playlist (<reason>)" if it cannot be read.
+// The largest playlist file read: 100,000 items of a few lines each are about 5 MB.
+inline constexpr std::size_t kMaxPlaylistBytes = 64u << 20;
+// Reads and parses a playlist file, a regular file of at most kMaxPlaylistBytes (base/read_file.h:
+// "<file>: cannot open the playlist (<reason>)", "<file>: the playlist is a FIFO, not a regular file").
 bool load_playlist(const std::string& path, const ParseOptions& options, Playlist& out, std::string& error);
 
 // `player play SCENE...`: each scene (path as given) for `duration_s` on a turntable of `period_s`

@@ -33,7 +33,8 @@ TEST(CameraScript, ReadsStepsCommentsAndBlankLines) {
 // Times that are not whole non-negative milliseconds within a hundred years: nan and infinities
 // among them, which once read as a blank line and were skipped.
 TEST(CameraScript, RefusesATimeThatIsNotMilliseconds) {
-  for (const char* time : {"nan", "NaN", "inf", "-inf", "-1", "1.5", "1e3", "0x10", "3153600000001", "99999999999999999999", "abc"})
+  for (const char* time :
+       {"nan", "NaN", "inf", "-inf", "-1", "1.5", "1e3", "0x10", "3153600000001", "99999999999999999999", "abc"})
     EXPECT_EQ(error_of(std::string("100 unplug\n") + time + " replug\n"),
               std::string("camera.script:2: time: expected milliseconds from 0 to 3153600000000 (100 years), got '") + time + "'")
         << time;

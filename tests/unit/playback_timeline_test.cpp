@@ -282,11 +282,11 @@ TEST(Timeline, MarkingAnItemTwiceOrBackAndForthKeepsTheCycle) {
   // The cycle is 14 s in both; a stall of 36020 s lands on the same item at the same time.
   check(fresh, {{1, 0, 1}, {36021, 2, 9}});
   check(marked, {{1, 0, 1}, {36021, 2, 9}});
-  // Every item unplayable, then one back: it alone plays, pass after pass.
+  // Every item unplayable, then one back: it alone plays, pass after pass (a 10 s cycle).
   Timeline one(make({4, 6, 10}), t0, wall0);
   for (int item : {0, 1, 2, 2}) one.set_playable(item, false);
   one.set_playable(2, true);
-  check(one, {{1, 2, 1}, {10003, 2, 3}});
+  check(one, {{1, 2, 0}, {10003, 2, 2}});  // it starts when first asked for, at 1 s
 }
 
 TEST(Timeline, StallLandsWhereSteppingLands) {

@@ -103,14 +103,9 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
     return 2;
   }
 
-  platform::Options platform_options;
-  platform_options.name = options.platform;
-  platform_options.size = {64, 64};  // every view renders into its own framebuffer
-  const auto session = gl::Session::open(platform_options, error);
-  if (!session) {
-    err << "error: " << error << "\n";
-    return 1;
-  }
+  // 64x64: every view renders into a framebuffer of its own.
+  const auto session = open_render_session(options.platform, 64, 64, err);
+  if (!session) return 1;
   const gl::Caps& caps = session->caps();
   scene::Scene scene;
   if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {

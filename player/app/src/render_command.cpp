@@ -94,6 +94,16 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
 }  // namespace
 
+std::unique_ptr<gl::Session> open_render_session(const std::string& platform, int width, int height, std::ostream& err) {
+  platform::Options options;
+  options.name = platform;
+  options.size = {width, height};
+  std::string error;
+  std::unique_ptr<gl::Session> session = gl::Session::open(options, error);
+  if (!session) err << "error: " << error << "\n";
+  return session;
+}
+
 scene::LoadOptions load_options_for(const gl::Caps& caps) {
   scene::LoadOptions options;
   options.max_texture_size = std::min(options.max_texture_size, caps.max_texture_size);
@@ -119,15 +129,9 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
         << ": needs --display FILE (a light field display)\n";
     return 2;
   }
+  const auto session = open_render_session(options.platform, options.frame.width, options.frame.height, err);
+  if (!session) return 1;
   std::string error;
-  platform::Options platform_options;
-  platform_options.name = options.platform;
-  platform_options.size = {options.frame.width, options.frame.height};
-  const auto session = gl::Session::open(platform_options, error);
-  if (!session) {
-    err << "error: " << error << "\n";
-    return 1;
-  }
   const platform::Platform& platform = session->platform();
   const gl::Caps& caps = session->caps();
 
@@ -223,15 +227,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
 }
 
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err) {
-  std::string error;
-  platform::Options platform_options;
-  platform_options.name = platform_name;
-  platform_options.size = {64, 64};
-  const auto session = gl::Session::open(platform_options, error);
-  if (!session) {
-    err << "error: " << error << "\n";
-    return 1;
-  }
+  const auto session = open_render_session(platform_name, 64, 64, err);
+  if (!session) return 1;
   const platform::Platform& platform = session->platform();
   const gl::Caps& caps = session->caps();
   out << "platform:        " << platform.name() << " (" << platform.description() << ")\n";

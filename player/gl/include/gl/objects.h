@@ -67,30 +67,30 @@ using Query = Object<detail::delete_query>;
 using Program = Object<detail::delete_program>;
 using Shader = Object<detail::delete_shader>;
 
-inline Buffer make_buffer() {
+namespace detail {
+// One name from a glGen* entry point, owned.
+template <typename Owner, typename Generate>
+Owner generate(Generate gen) {
   GLuint id = 0;
-  api.GenBuffers(1, &id);
-  return Buffer(id);
+  gen(1, &id);
+  return Owner(id);
+}
+}  // namespace detail
+
+inline Buffer make_buffer() {
+  return detail::generate<Buffer>(api.GenBuffers);
 }
 inline Texture make_texture() {
-  GLuint id = 0;
-  api.GenTextures(1, &id);
-  return Texture(id);
+  return detail::generate<Texture>(api.GenTextures);
 }
 inline Framebuffer make_framebuffer() {
-  GLuint id = 0;
-  api.GenFramebuffers(1, &id);
-  return Framebuffer(id);
+  return detail::generate<Framebuffer>(api.GenFramebuffers);
 }
 inline VertexArray make_vertex_array() {
-  GLuint id = 0;
-  api.GenVertexArrays(1, &id);
-  return VertexArray(id);
+  return detail::generate<VertexArray>(api.GenVertexArrays);
 }
 inline Query make_query() {
-  GLuint id = 0;
-  api.GenQueries(1, &id);
-  return Query(id);
+  return detail::generate<Query>(api.GenQueries);
 }
 
 }  // namespace gl

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <fstream>
 
+#include "hal/board.h"
+#include "hal/image.h"
 #include "hal/mock.h"
 #include "hal/self_check.h"
 
@@ -127,6 +131,50 @@ TEST(SelfCheck, MismatchedSizesAreAnErrorNotACrash) {
   const SelfCheckResult r = checker.check(RgbImage(100, 100), layout, RgbImage(640, 480));
   EXPECT_FALSE(r.passed);
   EXPECT_NE(r.reason.find("expected the layout's 640x360"), std::string::npos) << r.reason;
+}
+
+// A PNG of a signature, an IHDR chunk claiming `width` x `height` RGB, and next to no pixel data,
+// which a reader that trusts the header would allocate for before finding out.
+std::string png_claiming(std::uint32_t width, std::uint32_t height) {
+  const auto crc32 = [](const std::string& bytes) {
+    std::uint32_t crc = 0xFFFFFFFFu;
+    for (unsigned char byte : bytes) {
+      crc ^= byte;
+      for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  const auto big_endian = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    return big_endian(static_cast<std::uint32_t>(data.size())) + type + data + big_endian(crc32(type + data));
+  };
+  const std::string header = big_endian(width) + big_endian(height) + std::string("\x08\x02\x00\x00\x00", 5);
+  // An empty zlib stream as the only data: a reader learns the size from IHDR before it gets here.
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) +
+         chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + chunk("IEND", "");
+}
+
+TEST(MockCamera, AnImageWhoseHeaderClaimsTooManyPixelsIsRefusedBeforeAllocating) {
+  const std::string path = std::string(HAL_TEST_OUTPUT_DIR) + "/claims-60000.png";
+  std::ofstream(path, std::ios::binary) << png_claiming(60000, 60000);
+  RgbImage image;
+  std::string err;
+  EXPECT_FALSE(load_image(path, image, &err));
+  EXPECT_EQ(err, path + ": the image is 60000x60000; at most 16384 pixels per side and 64 million pixels are read");
+  // Within each side, beyond the pixel budget.
+  std::ofstream(path, std::ios::binary) << png_claiming(16000, 16000);
+  EXPECT_FALSE(load_image(path, image, &err));
+  EXPECT_EQ(err, path + ": the image is 16000x16000; at most 16384 pixels per side and 64 million pixels are read");
+  // As a mock camera's frame: the board's start-up fails with the same reason, not std::bad_alloc.
+  ManualClock clock(std::chrono::seconds(10));
+  try {
+    MockCamera camera({path}, clock);
+    ADD_FAILURE() << "the mock camera took " << path;
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "mock camera: " + err);
+  }
 }
 
 TEST(MockCamera, CyclesImageFilesAtItsFrameRateAndSimulatesUnplug) {

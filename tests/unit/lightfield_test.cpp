@@ -320,6 +320,30 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
             "/tmp/lf-test/d.toml:9:11: modules.x_first: expected a number of magnitude at most 1e6, got -1e+300");
 }
 
+// Every module's image goes into one montage texture: module count times resolution is checked in
+// the file, before anything is allocated, where a terabyte montage once reached the GPU.
+TEST(LightfieldDisplayFile, AMontageBeyondATexturesSideIsRefusedByTheFile) {
+  const auto replaced = [](std::string text, std::string_view from, std::string_view to) {
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string huge = replaced(replaced(kGood, "count = 4", "count = 1024"), "\"64x36\"", "\"16384x16384\"");
+  EXPECT_EQ(parse_error(huge),
+            "/tmp/lf-test/d.toml:12:14: modules.resolution: expected a montage of at most 16384 pixels per side: 1024 modules "
+            "of this size make 524288x524288 (32x32 modules), got '16384x16384'");
+  // Just within: 4 modules of 8192x8192 make a 16384x16384 montage; one pixel wider is refused.
+  lightfield::Display display;
+  std::string error;
+  EXPECT_TRUE(lightfield::parse_display(replaced(kGood, "\"64x36\"", "\"8192x8192\""), "d.toml", display, error)) << error;
+  EXPECT_EQ(
+      parse_error(replaced(kGood, "\"64x36\"", "\"8193x8192\""))
+          .rfind(
+              "/tmp/lf-test/d.toml:12:14: modules.resolution: expected a montage of at most 16384 pixels per side: 4 modules of "
+              "this size make 16386x16384",
+              0),
+      0u);
+}
+
 TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lightfield-test";
   std::filesystem::create_directories(dir);

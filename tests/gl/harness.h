@@ -14,6 +14,15 @@
 
 namespace test {
 
+// A context for a GL test on `platform_name` with a surface of `width` x `height`, KHR_debug on.
+inline std::unique_ptr<gl::Session> open_session(const std::string& platform_name, int width, int height, std::string& error) {
+  platform::Options options;
+  options.name = platform_name;
+  options.size = {width, height};
+  options.debug_context = true;
+  return gl::Session::open(options, error);
+}
+
 struct Harness {
   std::unique_ptr<gl::Session> session;  // first: everything below goes before its context
   platform::Platform* platform = nullptr;
@@ -43,11 +52,7 @@ struct Harness {
 
   // A context whose surface is the size of the frames.
   bool open(const std::string& platform_name, const render::FrameSettings& settings, std::string& error) {
-    platform::Options options;
-    options.name = platform_name;
-    options.size = {settings.width, settings.height};
-    options.debug_context = true;
-    session = gl::Session::open(options, error);
+    session = open_session(platform_name, settings.width, settings.height, error);
     if (!session) return false;
     platform = &session->platform();
     caps = session->caps();

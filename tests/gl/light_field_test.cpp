@@ -4,6 +4,7 @@
 #include "render/light_field.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
+#include "harness.h"
 #include "lightfield/display_file.h"
 #include "platform/platform.h"
 #include "render/readback.h"
@@ -35,12 +36,8 @@ distance = 2.5
 class LightField : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
-    platform::Options options;
-    options.name = GetParam();
-    options.size = {64, 64};
-    options.debug_context = true;
     std::string error;
-    session_ = gl::Session::open(options, error);
+    session_ = test::open_session(GetParam(), 64, 64, error);
     ASSERT_TRUE(session_) << error;
     dir_ = std::filesystem::temp_directory_path() / ("light-field-test-" + GetParam());
     std::filesystem::create_directories(dir_);

@@ -12,12 +12,8 @@ namespace {
 class Session : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
-    platform::Options options;
-    options.name = GetParam();
-    options.size = {64, 48};
-    options.debug_context = true;
     std::string error;
-    session_ = gl::Session::open(options, error);
+    session_ = test::open_session(GetParam(), 64, 48, error);
     ASSERT_TRUE(session_) << error;
     std::ostringstream log;
     ASSERT_TRUE(scene::load("builtin:demo", scene_, error, log)) << error;

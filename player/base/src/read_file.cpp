@@ -66,11 +66,6 @@ std::string byte_size_text(std::size_t bytes) {
   return text;
 }
 
-bool check_regular_file(const std::string& path, std::string_view what, std::size_t max_bytes, std::string& error) {
-  std::size_t size = 0;
-  return static_cast<bool>(open_regular(path, what, max_bytes, size, error));
-}
-
 bool read_regular_file(const std::string& path, std::string_view what, std::size_t max_bytes, std::string& out,
                        std::string& error) {
   std::size_t size = 0;

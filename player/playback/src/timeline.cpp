@@ -117,7 +117,6 @@ void Timeline::reset_playlist(Playlist playlist) {
     else
       ++infinite_playable_;
   }
-  playable_cycle_ = infinite_playable_ > 0 ? std::numeric_limits<double>::infinity() : finite_cycle_;
   mode_ = playlist_.schedule == Schedule::wallclock ? Mode::wallclock : Mode::sequential;
   for (auto& c : cache_) c.pass = none;
   wall_valid_ = false;
@@ -134,6 +133,10 @@ bool Timeline::looping() const {
 }
 bool Timeline::shuffled() const {
   return mode_ == Mode::sequential && playlist_.shuffle;
+}
+
+double Timeline::playable_cycle() const {
+  return infinite_playable_ > 0 ? std::numeric_limits<double>::infinity() : finite_cycle_;
 }
 
 double Timeline::duration(int item) const {
@@ -227,15 +230,15 @@ void Timeline::run_sequential() {
     ++sequence_;
     cut_pending_ = true;
     fade_in_ = true;
-    // A stalled caller: skip whole passes (each lasts playable_cycle_ whatever its order), so the
+    // A stalled caller: skip whole passes (each lasts playable_cycle() whatever its order), so the
     // loop runs at most about two passes' worth of items.
-    if (new_pass && looping() && std::isfinite(playable_cycle_)) {
-      double k = std::floor((play_time_ - item_start_) / playable_cycle_);
-      while (k > 0 && item_start_ + k * playable_cycle_ > play_time_) k -= 1;
+    if (new_pass && looping() && std::isfinite(playable_cycle())) {
+      double k = std::floor((play_time_ - item_start_) / playable_cycle());
+      while (k > 0 && item_start_ + k * playable_cycle() > play_time_) k -= 1;
       if (k >= 1 && k < 1e15) {
         const auto passes = static_cast<std::int64_t>(k);
         slot_ = find_playable((floor_div(g, n) + passes) * n, +1);
-        item_start_ += k * playable_cycle_;
+        item_start_ += k * playable_cycle();
         sequence_ += static_cast<std::uint64_t>(passes) * static_cast<std::uint64_t>(playable_count_);
       }
     }
@@ -422,7 +425,6 @@ void Timeline::set_playable(int item, bool playable) {
   else
     infinite_playable_ += sign;
   if (playable_count_ == 0) finite_cycle_ = 0;  // no rounding left behind when none plays
-  playable_cycle_ = infinite_playable_ > 0 ? std::numeric_limits<double>::infinity() : finite_cycle_;
 }
 
 void Timeline::replace(Playlist playlist, double now) {

@@ -13,12 +13,11 @@
 
 namespace app {
 
-FrameDrawer::FrameDrawer(gl::Session& session, const render::FrameSettings& base)
-    : session_(session), platform_(session.platform()), base_(base) {}
+FrameDrawer::FrameDrawer(gl::Session& session, const render::FrameSettings& base) : session_(session), base_(base) {}
 
 bool FrameDrawer::configure_rotation(std::string& error) {
-  surface_ = {platform_.framebuffer(), 0, 0, platform_.srgb_framebuffer()};
-  const platform::Size size = platform_.size();
+  surface_ = {session_.platform().framebuffer(), 0, 0, session_.platform().srgb_framebuffer()};
+  const platform::Size size = session_.platform().size();
   if (!rotation_.configure(programs_, rotation_degrees_, size.width, size.height, surface_.srgb, error)) return false;
   present_ = rotation_.target(surface_);
   return true;
@@ -137,7 +136,7 @@ bool FrameDrawer::write_frame(const std::string& path, std::string& error) const
 }
 
 bool FrameDrawer::write_surface(const std::string& path, std::string& error) const {
-  const platform::Size size = platform_.size();
+  const platform::Size size = session_.platform().size();
   const std::vector<uint8_t> rgba = render::read_presented(surface_, size.width, size.height);
   return write_png(path, size.width, size.height, rgba, error);
 }

@@ -79,7 +79,6 @@ class FrameDrawer {
   render::FrameSettings settings_for(const playback::Item& item) const;
 
   gl::Session& session_;
-  platform::Platform& platform_;
   const render::FrameSettings& base_;
   render::Programs programs_;
   render::PresentTarget surface_{};  // the platform's framebuffer

@@ -50,8 +50,7 @@ void StatusReporter::report(const std::string& error) {
 }
 
 void StatusReporter::note(const std::string& text) {
-  if (std::find(notes_.begin(), notes_.end(), text) != notes_.end()) return;
-  notes_.push_back(text);
+  if (!notes_.insert(text).second) return;
   err_ << "note: " << text << "\n";
 }
 

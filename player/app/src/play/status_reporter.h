@@ -15,6 +15,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace app {
@@ -79,7 +80,7 @@ class StatusReporter {
   ServiceNotifier service_;
   std::optional<size_t> status_led_, error_led_;
   std::vector<std::string> errors_;
-  std::vector<std::string> notes_;
+  std::unordered_set<std::string> notes_;  // one per item key at most: a set, for 100,000-item playlists
   double last_status_s_ = -1e9;
   std::string last_status_error_;
   FrameStats stats_;

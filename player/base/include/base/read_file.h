@@ -23,9 +23,6 @@ inline constexpr std::size_t kKiB = 1024, kMiB = 1024 * kKiB, kGiB = 1024 * kMiB
 bool read_regular_file(const std::string& path, std::string_view what, std::size_t max_bytes, std::string& out,
                        std::string& error);
 
-// The same checks, reading nothing: for a file a library opens itself by name. False and why.
-bool check_regular_file(const std::string& path, std::string_view what, std::size_t max_bytes, std::string& error);
-
 // "1.5 MiB", "312 bytes": sizes in messages.
 std::string byte_size_text(std::size_t bytes);
 

@@ -114,8 +114,9 @@ class Timeline {
   Playlist playlist_;
   std::vector<char> playable_;
   int playable_count_ = 0;
-  double playable_cycle_ = 0;     // sum of playable durations (sequential fast-forward)
-  double finite_cycle_ = 0;       // of it, the finite durations' sum
+  // The sum of playable durations (sequential fast-forward), from the two kept item by item.
+  double playable_cycle() const;
+  double finite_cycle_ = 0;       // the playable items' finite durations, summed
   int infinite_playable_ = 0;     // playable items of infinite duration (the cycle is then infinite)
   std::vector<double> slot_end_;  // wallclock: end of each item's slot in the cycle
   Mode mode_ = Mode::sequential;

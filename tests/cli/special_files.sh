@@ -54,7 +54,10 @@ mkdir -p "$dir/named"
 mkfifo "$dir/named/data.bin"
 cat > "$dir/named/scene.gltf" <<'JSON'
 {"asset": {"version": "2.0"}, "buffers": [{"uri": "data.bin", "byteLength": 36}],
- "scenes": [{"nodes": []}], "scene": 0}
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
 JSON
 expect named_buffer "the file the scene names is a FIFO, not a regular file" -- \
   "$player" render "$dir/named/scene.gltf" --platform egl --size 64x48 -o "$dir/x.png"

@@ -1,6 +1,7 @@
 #include "gltf_builder.h"
 
 #include "gltf_accessors.h"
+#include "gltf_document.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -10,20 +11,62 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 namespace scene::gltf {
 namespace {
 
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT_TYPE_BYTE,
+              kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kShort = TINYGLTF_COMPONENT_TYPE_SHORT,
+              kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+
+// Extensions whose content the player reads; any of them may be listed in extensionsRequired.
+const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression"};
+
+// What a scene using an extension the player does not read shows instead.
+std::string shown_instead(const std::string& extension) {
+  if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp" || extension == "MSFT_texture_dds")
+    return "textures whose only source is in that format are drawn white";
+  if (extension == "KHR_texture_transform") return "textures are drawn untransformed";
+  if (extension == "KHR_lights_punctual") return "the scene is lit by the player's own light";
+  if (extension.rfind("KHR_materials_", 0) == 0) return "materials show their core glTF properties";
+  if (extension == "KHR_draco_mesh_compression") return "primitives compressed with it are skipped";
+  return "the file's core glTF content is shown";
+}
+
+// The formats glTF 2.0 (3.7.2.1) allows for each attribute the player reads, widened by
+// KHR_mesh_quantization when the file uses it.
+std::vector<Format> position_formats(bool quantized) {
+  if (!quantized) return {{kFloat, false}};
+  return {{kFloat, false}, {kByte, false}, {kByte, true},           {kUnsignedByte, false}, {kUnsignedByte, true},
+          {kShort, false}, {kShort, true}, {kUnsignedShort, false}, {kUnsignedShort, true}};
+}
+std::vector<Format> normal_formats(bool quantized) {
+  if (!quantized) return {{kFloat, false}};
+  return {{kFloat, false}, {kByte, true}, {kShort, true}};
+}
+std::vector<Format> texcoord_formats(bool quantized) {
+  if (!quantized) return {{kFloat, false}, {kUnsignedByte, true}, {kUnsignedShort, true}};
+  return position_formats(true);
+}
+
 class Builder {
  public:
-  Builder(const tinygltf::Model& model, LoadReport& report) : model_(model), report_(report) {
+  Builder(Document& document, LoadReport& report)
+      : document_(document),
+        model_(document.model()),
+        report_(report),
+        quantized_(document.uses_extension("KHR_mesh_quantization")) {
     scene_.materials.push_back(Material{});  // index 0: glTF's default material
   }
 
   Scene build(const std::string& name) {
     scene_.name = name;
     for (const std::string& extension : model_.extensionsRequired)
-      fail("extensionsRequired: '" + extension + "' is not supported by this player");
+      if (!kSupportedExtensions.count(extension)) fail("extensionsRequired: '" + extension + "' is not supported by this player");
+    for (const std::string& extension : model_.extensionsUsed)
+      if (!kSupportedExtensions.count(extension))
+        report_.warnings.push_back("extensionsUsed: '" + extension + "' is not supported; " + shown_instead(extension));
     const tinygltf::Scene* shown = nullptr;
     int shown_index = 0;
     if (!model_.scenes.empty()) {
@@ -139,7 +182,7 @@ class Builder {
     const auto position_at = primitive.attributes.find("POSITION");
     if (position_at == primitive.attributes.end()) fail(where + ".attributes: POSITION is required");
     const auto positions =
-        read_floats<3>(model_, position_at->second, where + ".attributes.POSITION", {TINYGLTF_COMPONENT_TYPE_FLOAT});
+        read_floats<3>(document_, position_at->second, where + ".attributes.POSITION", position_formats(quantized_));
     const size_t vertex_count = positions.size();
 
     // glTF 2.0, 3.7.2.1: all attribute accessors of a primitive have the same count; checked for the
@@ -152,31 +195,27 @@ class Builder {
 
     std::vector<glm::vec3> normals;
     if (auto at = primitive.attributes.find("NORMAL"); at != primitive.attributes.end()) {
-      normals = read_floats<3>(model_, at->second, where + ".attributes.NORMAL", {TINYGLTF_COMPONENT_TYPE_FLOAT});
+      normals = read_floats<3>(document_, at->second, where + ".attributes.NORMAL", normal_formats(quantized_));
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
     std::vector<glm::vec2> uvs;
     if (auto at = primitive.attributes.find("TEXCOORD_0"); at != primitive.attributes.end()) {
-      uvs = read_floats<2>(
-          model_, at->second, where + ".attributes.TEXCOORD_0",
-          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+      uvs = read_floats<2>(document_, at->second, where + ".attributes.TEXCOORD_0", texcoord_formats(quantized_));
       if (uvs.size() != vertex_count) fail(where + ".attributes.TEXCOORD_0: count differs from POSITION's");
     }
 
     std::vector<uint32_t> indices;
     if (primitive.indices >= 0) {
-      const View view = checked_view(
-          model_, primitive.indices, where + ".indices",
-          {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-          1);
-      indices.resize(view.count);
-      for (size_t i = 0; i < view.count; ++i) {
-        const double value = component(view, i, 0);
-        if (value >= static_cast<double>(vertex_count))
-          fail(where + ".indices: element " + std::to_string(i) + " is " + std::to_string(static_cast<uint64_t>(value)) +
-               ", expected less than the vertex count " + std::to_string(vertex_count));
-        indices[i] = static_cast<uint32_t>(value);
-      }
+      read_accessor(
+          document_, primitive.indices, where + ".indices",
+          {{kUnsignedByte, false}, {kUnsignedShort, false}, {kUnsignedInt, false}}, 1,
+          [&](size_t count) { indices.resize(count); },
+          [&](size_t i, const double* value) {
+            if (*value >= static_cast<double>(vertex_count))
+              fail(where + ".indices: element " + std::to_string(i) + " is " + std::to_string(static_cast<uint64_t>(*value)) +
+                   ", expected less than the vertex count " + std::to_string(vertex_count));
+            indices[i] = static_cast<uint32_t>(*value);
+          });
     } else {
       indices.resize(vertex_count);
       for (size_t i = 0; i < vertex_count; ++i) indices[i] = static_cast<uint32_t>(i);
@@ -265,18 +304,16 @@ class Builder {
     if (auto found = textures_.find(index); found != textures_.end()) return found->second;
     const tinygltf::Texture& source = model_.textures[static_cast<size_t>(index)];
     const std::string where = "textures[" + std::to_string(index) + "]";
-    if (source.source < 0 || static_cast<size_t>(source.source) >= model_.images.size())
-      fail(where + ".source: " + std::to_string(source.source) + " is not an image index");
-    const tinygltf::Image& image = model_.images[static_cast<size_t>(source.source)];
-    // An image that could not be used is drawn white; load_gltf has put the reason in the warnings.
-    if (image.image.empty()) return white_texture();
-    const size_t expected = static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 4;
-    if (image.width <= 0 || image.height <= 0 || image.component != 4 || image.bits != 8 || image.image.size() != expected)
-      fail("images[" + std::to_string(source.source) + "]: expected decoded 8-bit RGBA pixels");
+    // A texture without a source (one only an extension such as KHR_texture_basisu supplies) is
+    // drawn white, as the warning about the extension says.
+    if (source.source < 0) return white_texture();
+    const DecodedImage& image = document_.image(source.source, where + ".source");
+    // An image that could not be used is drawn white; the document has put the reason in the warnings.
+    if (image.rgba.empty()) return white_texture();
     Texture texture;
     texture.width = image.width;
     texture.height = image.height;
-    texture.rgba = image.image;
+    texture.rgba = image.rgba;
     if (source.sampler >= 0 && static_cast<size_t>(source.sampler) < model_.samplers.size()) {
       const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(source.sampler)];
       texture.mag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::nearest : Filter::linear;
@@ -304,8 +341,10 @@ class Builder {
     return white_;
   }
 
+  Document& document_;
   const tinygltf::Model& model_;
   LoadReport& report_;
+  const bool quantized_;
   int white_ = -1;
   Scene scene_;
   std::map<int, std::vector<int>> converted_;
@@ -314,8 +353,8 @@ class Builder {
 
 }  // namespace
 
-Scene build_scene(const tinygltf::Model& model, LoadReport& report, const std::string& name) {
-  return Builder(model, report).build(name);
+Scene build_scene(Document& document, LoadReport& report, const std::string& name) {
+  return Builder(document, report).build(name);
 }
 
 }  // namespace scene::gltf

@@ -39,35 +39,129 @@ constexpr uint32_t kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
 
 }  // namespace
 
-// Reports files outside the folder as existing so that the read below refuses them by name,
-// rather than tinygltf saying only "file not found".
-bool confined_exists(const std::string& path, void*) {
-  std::error_code ec;
-  return fs::exists(path, ec);
+namespace {
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
 }
 
-std::string confined_expand(const std::string& path, void*) {
-  return path;
-}
-
-bool confined_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  const auto* confinement = static_cast<Confinement*>(user);
-  if (!inside(confinement->root, path)) {
-    if (err) *err += "'" + path + "' lies outside the scene's folder " + confinement->root.string() + "; ";
-    return false;
+// "%XX" sequences to bytes; false on a malformed one.
+bool percent_decode(const std::string& text, std::string& out) {
+  out.clear();
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '%') {
+      out += text[i];
+      continue;
+    }
+    if (i + 2 >= text.size() || hex_digit(text[i + 1]) < 0 || hex_digit(text[i + 2]) < 0) return false;
+    out += static_cast<char>(hex_digit(text[i + 1]) * 16 + hex_digit(text[i + 2]));
+    i += 2;
   }
-  std::string bytes, error;
-  if (!base::read_regular_file(path, "file the scene names", kMaxFileBytes, bytes, error)) {
-    if (err) *err += error + "; ";
-    return false;
-  }
-  out->assign(bytes.begin(), bytes.end());
   return true;
 }
 
-bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-  if (err) *err += "the loader never writes files; ";
-  return false;
+int base64_digit(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+' || c == '-') return 62;  // '-' and '_': the URL-safe alphabet some writers use
+  if (c == '/' || c == '_') return 63;
+  return -1;
+}
+
+}  // namespace
+
+bool read_confined(const fs::path& folder, const std::string& uri, std::vector<unsigned char>& out, std::string& problem) {
+  std::string relative;
+  if (!percent_decode(uri, relative)) {
+    problem = "'" + uri + "' has a malformed %-escape; expected %XX with two hex digits";
+    return false;
+  }
+  const fs::path path = folder / relative;
+  if (!inside(folder, path)) {
+    problem = "'" + uri + "' lies outside the scene's folder " + folder.string();
+    return false;
+  }
+  std::string bytes;
+  if (!base::read_regular_file(path.string(), "file the scene names", kMaxFileBytes, bytes, problem)) return false;
+  out.assign(bytes.begin(), bytes.end());
+  return true;
+}
+
+bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out, std::string& problem) {
+  const size_t comma = uri.find(',');
+  if (uri.rfind("data:", 0) != 0 || comma == std::string::npos) {
+    problem = "a data: URI without its ','; expected data:[<type>][;base64],<data>";
+    return false;
+  }
+  const std::string header = uri.substr(5, comma - 5), payload = uri.substr(comma + 1);
+  const bool base64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
+  out.clear();
+  if (!base64) {
+    std::string text;
+    if (!percent_decode(payload, text)) {
+      problem = "the data: URI has a malformed %-escape; expected %XX with two hex digits";
+      return false;
+    }
+    out.assign(text.begin(), text.end());
+    return true;
+  }
+  out.reserve(payload.size() / 4 * 3);
+  uint32_t bits = 0;
+  int pending = 0;
+  size_t padding = 0;
+  for (size_t i = 0; i < payload.size(); ++i) {
+    const char c = payload[i];
+    if (c == '=') {
+      ++padding;
+      continue;
+    }
+    const int digit = base64_digit(c);
+    if (digit < 0 || padding > 0) {
+      problem = "the data: URI's base64 has '" + std::string(1, c) + "' at character " + std::to_string(i) +
+                "; expected A-Z, a-z, 0-9, +, / and = only at the end";
+      return false;
+    }
+    bits = (bits << 6) | static_cast<uint32_t>(digit);
+    if (++pending == 4) {
+      out.push_back(static_cast<unsigned char>(bits >> 16));
+      out.push_back(static_cast<unsigned char>(bits >> 8));
+      out.push_back(static_cast<unsigned char>(bits));
+      bits = 0;
+      pending = 0;
+    }
+  }
+  if (pending == 1 || padding > 2) {
+    problem = "the data: URI's base64 ends mid-byte; expected a length that decodes to whole bytes";
+    return false;
+  }
+  if (pending == 2) out.push_back(static_cast<unsigned char>(bits >> 4));
+  if (pending == 3) {
+    out.push_back(static_cast<unsigned char>(bits >> 10));
+    out.push_back(static_cast<unsigned char>(bits >> 2));
+  }
+  return true;
+}
+
+std::string uri_problem(const std::string& uri) {
+  if (uri.empty()) return "empty; expected a file inside the scene's folder";
+  if (uri.find("://") != std::string::npos) return "'" + uri + "' is a URL; expected a file inside the scene's folder";
+  const fs::path path(uri);
+  if (path.is_absolute() || uri.front() == '/' || uri.front() == '\\')
+    return "'" + uri + "' is an absolute path; expected a path relative to the scene's folder";
+  int depth = 0;
+  for (const fs::path& part : path) {
+    if (part == "..")
+      --depth;
+    else if (part != "." && !part.empty())
+      ++depth;
+    if (depth < 0) return "'" + uri + "' escapes the scene's folder";
+  }
+  return {};
 }
 
 // The GLB layout (glTF 2.0, 4.4): checked here because tinygltf reads chunk 1 at whatever offset
@@ -78,17 +172,25 @@ std::string split_glb(const std::string& bytes, Glb& out, std::vector<std::strin
   if (bytes.compare(0, 4, "glTF") != 0) return "bytes 0..3 are not the GLB magic 'glTF'";
   if (const uint32_t version = u32_at(bytes, 4); version != 2)
     return "GLB header version " + std::to_string(version) + "; expected 2";
-  if (const uint32_t length = u32_at(bytes, 8); length != bytes.size())
-    return "GLB header length " + std::to_string(length) + " differs from the file's " + std::to_string(bytes.size()) + " bytes";
+  const uint32_t declared = u32_at(bytes, 8);
+  if (declared > bytes.size())
+    return "GLB header length " + std::to_string(declared) + " exceeds the file's " + std::to_string(bytes.size()) +
+           " bytes (the file is truncated)";
+  if (declared < 12) return "GLB header length " + std::to_string(declared) + "; expected at least the 12-byte header";
+  // glTF-Validator warns about bytes after the declared length (GLB_EXTRA_DATA); they are not glTF.
+  if (declared < bytes.size())
+    warnings.push_back("GLB: " + std::to_string(bytes.size() - declared) + " bytes after the declared length " +
+                       std::to_string(declared) + "; ignored");
+  const size_t end = declared;
   size_t at = 12;
   bool has_json = false;
-  for (int chunk = 0; at < bytes.size(); ++chunk) {
+  for (int chunk = 0; at < end; ++chunk) {
     const std::string where = "GLB chunk " + std::to_string(chunk) + " at byte " + std::to_string(at);
-    if (bytes.size() - at < 8) return where + ": its 8-byte header runs past the end of the file";
+    if (end - at < 8) return where + ": its 8-byte header runs past the end of the file";
     const uint32_t length = u32_at(bytes, at), type = u32_at(bytes, at + 4);
-    if (length > bytes.size() - at - 8)
-      return where + ": length " + std::to_string(length) + " runs past the end of the file (" +
-             std::to_string(bytes.size() - at - 8) + " bytes left)";
+    if (length > end - at - 8)
+      return where + ": length " + std::to_string(length) + " runs past the end of the file (" + std::to_string(end - at - 8) +
+             " bytes left)";
     if (length % 4 != 0) return where + ": length " + std::to_string(length) + " is not a multiple of 4";
     const std::string data = bytes.substr(at + 8, length);
     if (chunk == 0 && type != kChunkJson) return where + ": type " + hex32(type) + "; expected JSON (0x4E4F534A) first";
@@ -109,25 +211,6 @@ std::string split_glb(const std::string& bytes, Glb& out, std::vector<std::strin
   }
   if (!has_json) return "the GLB file has no JSON chunk";
   return {};
-}
-
-std::string join_glb(const Glb& glb) {
-  std::string json = glb.json;
-  while (json.size() % 4) json += ' ';
-  std::string bytes = "glTF";
-  auto put = [&](uint32_t value) { bytes.append(reinterpret_cast<const char*>(&value), 4); };
-  const bool bin = glb.has_bin && !glb.bin.empty();
-  put(2);
-  put(static_cast<uint32_t>(12 + 8 + json.size() + (bin ? 8 + glb.bin.size() : 0)));
-  put(static_cast<uint32_t>(json.size()));
-  put(kChunkJson);
-  bytes += json;
-  if (bin) {
-    put(static_cast<uint32_t>(glb.bin.size()));
-    put(kChunkBin);
-    bytes += glb.bin;
-  }
-  return bytes;
 }
 
 // Bracket depth outside strings, counted before any parser runs: tinygltf converts the parsed JSON

@@ -1,7 +1,7 @@
 #pragma once
-// The bytes of a glTF file before tinygltf sees them: the GLB container checked and rebuilt, JSON
-// nesting bounded, and the file-system callbacks that keep every external file inside the scene's
-// folder. Errors come back as text (empty: fine), naming the byte or field at fault.
+// The bytes of a glTF file: the GLB container checked and split, JSON nesting bounded, data: URIs
+// decoded, and external files read only from inside the scene's folder. Errors come back as text (empty: fine), naming the byte
+// or field at fault.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -14,15 +14,17 @@ namespace scene::gltf {
 // index with 32 bits, and a board's memory ends well before this.
 inline constexpr std::size_t kMaxFileBytes = std::size_t{2} << 30;
 
-struct Confinement {
-  std::filesystem::path root;  // canonical folder of the scene file
-};
+// Reads `uri` (percent-encoded, relative to `folder`) as a regular file, refused when it resolves
+// outside `folder` (through "..", or a symbolic link). Returns false with the reason in `problem`.
+bool read_confined(const std::filesystem::path& folder, const std::string& uri, std::vector<unsigned char>& out,
+                   std::string& problem);
 
-// tinygltf's FsCallbacks; `user` is a Confinement.
-bool confined_exists(const std::string& path, void* user);
-std::string confined_expand(const std::string& path, void* user);
-bool confined_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user);
-bool refuse_write(std::string* err, const std::string& path, const std::vector<unsigned char>& bytes, void* user);
+// A data: URI's bytes (RFC 2397: base64, or percent-encoded text). False with the reason in `problem`.
+bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out, std::string& problem);
+
+// External files may only be named relative to the scene's folder and may not climb out of it:
+// the reason a uri is refused, or empty.
+std::string uri_problem(const std::string& uri);
 
 struct Glb {
   std::string json;
@@ -32,8 +34,6 @@ struct Glb {
 
 // Splits a .glb file's bytes into its chunks; unknown chunks are skipped with a warning.
 std::string split_glb(const std::string& bytes, Glb& out, std::vector<std::string>& warnings);
-// The same layout rebuilt from checked parts, for tinygltf's reader (which needs BIN right after JSON).
-std::string join_glb(const Glb& glb);
 // Deeper than kMaxJsonDepth, or empty when the text nests within it.
 std::string nesting_problem(const std::string& text);
 

@@ -1,9 +1,10 @@
 #include "gltf_images.h"
 
+#include "gltf_document.h"
+
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <png.h>
-#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -15,14 +16,10 @@ namespace scene::gltf {
 // error: ..." itself, so PNG goes through libpng's simplified API, which keeps every message in
 // png_image::message; OpenImageIO's JPEG reader routes libjpeg's messages to its own error, which
 // is read and dropped. Either way the one line is ours.
-bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,
-                int size, void* user) {
-  auto& context = *static_cast<ImageContext*>(user);
+DecodedImage decode_image(const unsigned char* bytes, size_t size, const LoadOptions& options, std::string& problem) {
   auto skip = [&](const std::string& what) {
-    context.problems[index] = what;
-    image->image.clear();
-    image->width = image->height = 0;
-    return true;  // tinygltf would drop the whole scene on false
+    problem = what;
+    return DecodedImage{};
   };
   if (size < 4) return skip("image data is empty or truncated");
   // OpenImageIO picks the reader by file extension; glTF images are PNG or JPEG by magic number.
@@ -32,32 +29,30 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
   const std::string corrupt = "the " + kind + " data cannot be decoded (corrupt or truncated)";
   // From the header alone: the size is checked before a single pixel is decoded or allocated.
   auto size_problem = [&](uint64_t width, uint64_t height) -> std::string {
-    const uint64_t limit = static_cast<uint64_t>(context.options->max_texture_size);
+    const uint64_t limit = static_cast<uint64_t>(options.max_texture_size);
     const std::string dimensions = kind + " of " + std::to_string(width) + "x" + std::to_string(height);
     if (width == 0 || height == 0 || width > limit || height > limit)
       return dimensions + "; expected 1.." + std::to_string(limit) + " pixels per side";
     const uint64_t decoded = width * height * 4;
-    if (decoded > context.options->image_budget_bytes)
+    if (decoded > options.image_budget_bytes)
       return dimensions + " needs " + std::to_string(decoded >> 20) + " MiB decoded; expected at most " +
-             std::to_string(context.options->image_budget_bytes >> 20) + " MiB per image";
+             std::to_string(options.image_budget_bytes >> 20) + " MiB per image";
     return {};
   };
   auto finish = [&](int width, int height, std::vector<unsigned char> pixels) {
-    image->width = width;
-    image->height = height;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image = std::move(pixels);
-    return true;
+    DecodedImage image;
+    image.width = width;
+    image.height = height;
+    image.rgba = std::move(pixels);
+    return image;
   };
   if (png) {
     png_image decoder{};
     decoder.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_memory(&decoder, bytes, static_cast<size_t>(size))) return skip(corrupt);
-    if (const std::string problem = size_problem(decoder.width, decoder.height); !problem.empty()) {
+    if (!png_image_begin_read_from_memory(&decoder, bytes, size)) return skip(corrupt);
+    if (const std::string too_large = size_problem(decoder.width, decoder.height); !too_large.empty()) {
       png_image_free(&decoder);
-      return skip(problem);
+      return skip(too_large);
     }
     decoder.format = PNG_FORMAT_RGBA;  // grey, palette and 16-bit files all become 8-bit sRGB RGBA
     std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(decoder));
@@ -65,7 +60,7 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
     if (!png_image_finish_read(&decoder, nullptr, pixels.data(), 0, nullptr)) return skip(corrupt);
     return finish(width, height, std::move(pixels));
   }
-  OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), static_cast<size_t>(size));
+  OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), size);
   auto input = OIIO::ImageInput::open("image.jpg", nullptr, &memory);
   if (!input) {
     (void)OIIO::geterror();  // clears the thread's message so it cannot surface later
@@ -73,8 +68,8 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
   }
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0) return skip(corrupt);
-  if (const std::string problem = size_problem(uint64_t(spec.width), uint64_t(spec.height)); !problem.empty())
-    return skip(problem);
+  if (const std::string too_large = size_problem(uint64_t(spec.width), uint64_t(spec.height)); !too_large.empty())
+    return skip(too_large);
   std::vector<unsigned char> pixels(size_t(spec.width) * size_t(spec.height) * 4, 255);
   const int channels = std::min(spec.nchannels, 4);
   const bool read = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data(), 4);

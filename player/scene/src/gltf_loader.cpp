@@ -4,10 +4,9 @@
 #include "gltf_accessors.h"
 #include "gltf_builder.h"
 #include "gltf_bytes.h"
-#include "gltf_images.h"
+#include "gltf_document.h"
 #include "gltf_schema.h"
 
-#include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -16,14 +15,14 @@
 #include <iterator>
 #include <system_error>
 
-// The loader's pieces live in scene::gltf, one job a file: gltf_bytes (the container and confined
-// file access), gltf_schema (the JSON checks tinygltf skips), gltf_images (decoding), gltf_accessors
-// (bounds-checked reads), gltf_builder (the Scene). This file runs them in order.
+// The loader's pieces live in scene::gltf, one job a file: gltf_bytes (the container, data: URIs and
+// confined file access), gltf_schema (the JSON checks tinygltf skips), gltf_document (tinygltf's
+// structure and the bytes behind it, read when used), gltf_images and gltf_meshopt (decoding),
+// gltf_accessors (bounds-checked reads), gltf_builder (the Scene). This file runs them in order.
 namespace scene {
 namespace fs = std::filesystem;
-using gltf::Confinement;
+using gltf::Document;
 using gltf::Glb;
-using gltf::ImageContext;
 using nlohmann::json;
 
 bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadOptions& options) {
@@ -75,42 +74,19 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     if (const size_t at = what.find("] "); at != std::string::npos) what.erase(0, at + 2);  // "[json.exception...] "
     return refuse("not a valid glTF 2.0 file: " + what);
   }
+  glb.json = std::string();  // parsed: only the BIN chunk is needed from here on
+  gltf::integral_floats_to_integers(root);
   if (const std::string problem = gltf::schema_problem(root, report.warnings); !problem.empty()) return refuse(problem);
-  if (const std::string problem = gltf::uri_problem(root); !problem.empty()) return refuse(problem);
-  root = json();  // tinygltf parses its own copy; this one need not stay in memory beside it
 
-  Confinement confinement{fs::weakly_canonical(fs::absolute(file)).parent_path()};
-  tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({gltf::confined_exists, gltf::confined_expand, gltf::confined_read, gltf::refuse_write, &confinement});
-  ImageContext images;
-  images.options = &options;
-  loader.SetImageLoader(gltf::load_image, &images);
-  tinygltf::Model model;
-  std::string error, warning;
-  const std::string base_dir = fs::absolute(file).parent_path().string();
-  bool parsed = false;
-  if (binary) {
-    const std::string joined = gltf::join_glb(glb);
-    parsed = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(joined.data()),
-                                         static_cast<unsigned int>(joined.size()), base_dir);
-  } else {
-    parsed = loader.LoadASCIIFromString(&model, &error, &warning, glb.json.data(), static_cast<unsigned int>(glb.json.size()),
-                                        base_dir);
+  Document document(std::move(root), std::move(glb), fs::weakly_canonical(fs::absolute(file)).parent_path(), options,
+                    report.warnings);
+  if (const std::string error = document.parse(); !error.empty()) {
+    std::string text = error;
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == ';')) text.pop_back();
+    return refuse("not a valid glTF 2.0 file: " + text);
   }
-  if (!parsed) {
-    while (!error.empty() && (error.back() == '\n' || error.back() == ' ' || error.back() == ';')) error.pop_back();
-    return refuse("not a valid glTF 2.0 file: " + (error.empty() ? "unknown parse error" : error));
-  }
-  // Images tinygltf could not read (a missing external file) reach no decoder; they too are white.
-  for (size_t i = 0; i < model.images.size(); ++i) {
-    const int index = static_cast<int>(i);
-    if (model.images[i].image.empty() && !images.problems.count(index))
-      images.problems[index] = "'" + model.images[i].uri + "' cannot be read";
-  }
-  for (const auto& [index, problem] : images.problems)
-    report.warnings.push_back("images[" + std::to_string(index) + "]: " + problem + "; its texture is drawn white");
   try {
-    out = gltf::build_scene(model, report, fs::path(file).filename().string());
+    out = gltf::build_scene(document, report, fs::path(file).filename().string());
   } catch (const gltf::LoadError& e) {
     return refuse(e.message);
   }

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -286,33 +287,14 @@ std::string schema_problem(const json& root, std::vector<std::string>& warnings)
   return SchemaCheck(root, warnings).run();
 }
 
-std::string uri_problem(const json& root) {
-  for (const char* array : {"buffers", "images"}) {
-    const auto found = root.find(array);
-    if (found == root.end() || !found->is_array()) continue;
-    for (size_t i = 0; i < found->size(); ++i) {
-      const json& entry = (*found)[i];
-      if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
-      const std::string uri = entry["uri"].get<std::string>();
-      if (uri.rfind("data:", 0) == 0) continue;
-      const std::string field = std::string(array) + "[" + std::to_string(i) + "].uri";
-      if (uri.empty()) return field + ": empty; expected a file inside the scene's folder";
-      if (uri.find("://") != std::string::npos)
-        return field + ": '" + uri + "' is a URL; expected a file inside the scene's folder";
-      const fs::path path(uri);
-      if (path.is_absolute() || uri.front() == '/' || uri.front() == '\\')
-        return field + ": '" + uri + "' is an absolute path; expected a path relative to the scene's folder";
-      int depth = 0;
-      for (const fs::path& part : path) {
-        if (part == "..")
-          --depth;
-        else if (part != "." && !part.empty())
-          ++depth;
-        if (depth < 0) return field + ": '" + uri + "' escapes the scene's folder";
-      }
-    }
+void integral_floats_to_integers(json& value) {
+  if (value.is_number_float()) {
+    const double number = value.get<double>();
+    // 2^53: beyond it a double no longer holds every integer, and glTF's integers stop there too.
+    if (std::trunc(number) == number && std::abs(number) <= 9007199254740991.0) value = static_cast<int64_t>(number);
+  } else if (value.is_structured()) {
+    for (json& element : value) integral_floats_to_integers(element);
   }
-  return {};
 }
 
 }  // namespace scene::gltf

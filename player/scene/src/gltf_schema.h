@@ -15,7 +15,10 @@ namespace scene::gltf {
 // sampler value outside its list means the default for that field.
 std::string schema_problem(const nlohmann::json& root, std::vector<std::string>& warnings);
 
-// External files may only be named relative to the scene's folder and may not climb out of it.
-std::string uri_problem(const nlohmann::json& root);
+// JSON has one kind of number; glTF-Validator accepts an integer written as 1.0 wherever an
+// integer is expected, and so does the player: every float with an integral value (within 2^53)
+// becomes an integer before the schema check and tinygltf, which both tell the two apart. Floats
+// read as numbers are unaffected (both readers take an integer where a number is expected).
+void integral_floats_to_integers(nlohmann::json& value);
 
 }  // namespace scene::gltf

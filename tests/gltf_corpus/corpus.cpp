@@ -705,8 +705,8 @@ Bytes no_position() {
 }
 Bytes required_extension() {
   return edit([](json& d) {
-    d["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    d["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    d["extensionsUsed"] = {"KHR_texture_basisu"};
+    d["extensionsRequired"] = {"KHR_texture_basisu"};
   });
 }
 Bytes uri_escapes() {

@@ -1,12 +1,16 @@
 // Geometry as asset pipelines write it: sparse accessors, accessors without a buffer view,
-// KHR_mesh_quantization, EXT_meshopt_compression (encoded here with meshoptimizer's own encoder),
+// KHR_mesh_quantization, EXT_meshopt_compression and KHR_draco_mesh_compression (encoded here with
+// meshoptimizer's and Draco's own encoders),
 // and the constructs glTF-Validator calls valid that the loader used to refuse. Each decoded mesh is
 // compared with the same mesh written plainly.
 #include "gltf_fixture.h"
 
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -27,11 +31,10 @@ std::vector<glm::vec3> positions_of(const scene::Scene& scene) {
 // every triangle and its winding but may rotate it.
 std::vector<glm::vec3> triangles_of(const scene::Scene& scene) {
   std::vector<glm::vec3> out = positions_of(scene);
-  auto less = [](const glm::vec3& a, const glm::vec3& b) {
-    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
-  };
+  auto less = [](const glm::vec3& a, const glm::vec3& b) { return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z; };
   for (size_t t = 0; t + 2 < out.size(); t += 3)
-    while (less(out[t + 1], out[t]) || less(out[t + 2], out[t])) std::rotate(out.begin() + long(t), out.begin() + long(t) + 1, out.begin() + long(t) + 3);
+    while (less(out[t + 1], out[t]) || less(out[t + 2], out[t]))
+      std::rotate(out.begin() + long(t), out.begin() + long(t) + 1, out.begin() + long(t) + 3);
   return out;
 }
 
@@ -54,9 +57,8 @@ class GltfGeometry : public GltfLoader {
     doc["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", data_uri(bytes)}});
     doc["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", targets.size()}});
     doc["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", values_at}, {"byteLength", targets.size() * 12}});
-    doc["accessors"][0]["sparse"] = {{"count", targets.size()},
-                                     {"indices", {{"bufferView", 2}, {"componentType", 5121}}},
-                                     {"values", {{"bufferView", 3}}}};
+    doc["accessors"][0]["sparse"] = {
+        {"count", targets.size()}, {"indices", {{"bufferView", 2}, {"componentType", 5121}}}, {"values", {{"bufferView", 3}}}};
     if (!with_buffer_view) doc["accessors"][0].erase("bufferView");
     return doc;
   }
@@ -92,21 +94,21 @@ TEST_F(GltfGeometry, AnIndexAccessorWithoutABufferViewIsZeros) {
 json quantized_triangle(bool declare) {
   std::vector<unsigned char> bytes;
   append<int16_t>(bytes, {0, 0, 0, 0, 32767, 0, 0, 0, -32767, 16384, 0, 0});
-  json doc = {{"asset", {{"version", "2.0"}}},
-              {"scenes", {{{"nodes", {0}}}}},
-              {"nodes", {{{"mesh", 0}}}},
-              {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
-              {"buffers", {{{"byteLength", bytes.size()}, {"uri", data_uri(bytes)}}}},
-              {"bufferViews", {{{"buffer", 0}, {"byteLength", bytes.size()}, {"byteStride", 8}}}},
-              {"accessors",
-               {{{"bufferView", 0}, {"componentType", 5122}, {"normalized", true}, {"count", 3}, {"type", "VEC3"}}}}};
+  json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", data_uri(bytes)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", bytes.size()}, {"byteStride", 8}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5122}, {"normalized", true}, {"count", 3}, {"type", "VEC3"}}}}};
   if (declare) doc["extensionsUsed"] = doc["extensionsRequired"] = {"KHR_mesh_quantization"};
   return doc;
 }
 
 TEST_F(GltfGeometry, QuantizedPositionsNeedKhrMeshQuantization) {
-  expect_near(positions_of(load_ok(write(quantized_triangle(true)))),
-              {{0, 0, 0}, {1, 0, 0}, {-1, 16384.0f / 32767.0f, 0}}, 1e-6f);
+  expect_near(positions_of(load_ok(write(quantized_triangle(true)))), {{0, 0, 0}, {1, 0, 0}, {-1, 16384.0f / 32767.0f, 0}},
+              1e-6f);
   EXPECT_NE(error_of(write(quantized_triangle(false)))
                 .find("attributes.POSITION (accessors[0]): signed short normalized is not allowed here; expected float"),
             std::string::npos);
@@ -130,7 +132,8 @@ PlainMesh curve_mesh(int n) {
 json meshopt_document(const PlainMesh& mesh, std::vector<unsigned char>* patch_compressed = nullptr) {
   const size_t vertices = mesh.positions.size() / 3;
   std::vector<unsigned char> vertex_stream(meshopt_encodeVertexBufferBound(vertices, 12));
-  vertex_stream.resize(meshopt_encodeVertexBuffer(vertex_stream.data(), vertex_stream.size(), mesh.positions.data(), vertices, 12));
+  vertex_stream.resize(
+      meshopt_encodeVertexBuffer(vertex_stream.data(), vertex_stream.size(), mesh.positions.data(), vertices, 12));
   std::vector<unsigned char> index_stream(meshopt_encodeIndexBufferBound(mesh.indices.size(), vertices));
   index_stream.resize(
       meshopt_encodeIndexBuffer(index_stream.data(), index_stream.size(), mesh.indices.data(), mesh.indices.size()));
@@ -155,7 +158,11 @@ json meshopt_document(const PlainMesh& mesh, std::vector<unsigned char>* patch_c
              {"byteStride", 12},
              {"extensions",
               {{"EXT_meshopt_compression",
-                {{"buffer", 0}, {"byteLength", vertex_stream.size()}, {"byteStride", 12}, {"count", vertices}, {"mode", "ATTRIBUTES"}}}}}},
+                {{"buffer", 0},
+                 {"byteLength", vertex_stream.size()},
+                 {"byteStride", 12},
+                 {"count", vertices},
+                 {"mode", "ATTRIBUTES"}}}}}},
             {{"buffer", 1},
              {"byteOffset", vertex_bytes},
              {"byteLength", index_bytes},
@@ -188,7 +195,8 @@ TEST_F(GltfGeometry, MeshoptRequestsAreCheckedBeforeDecoding) {
     std::string expected;
   };
   const std::vector<Case> cases = {
-      {"more elements than the view holds", [](json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 51; },
+      {"more elements than the view holds",
+       [](json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 51; },
        "bufferViews[0].extensions.EXT_meshopt_compression: count x byteStride is 612 bytes; the buffer view has 600"},
       {"a terabyte from a few bytes",
        [](json& d) {
@@ -207,7 +215,8 @@ TEST_F(GltfGeometry, MeshoptRequestsAreCheckedBeforeDecoding) {
        },
        "cannot come from"},
       {"an unknown mode", [](json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["mode"] = "STRIPS"; },
-       "bufferViews[1].extensions.EXT_meshopt_compression.mode: \"STRIPS\"; expected \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\""},
+       "bufferViews[1].extensions.EXT_meshopt_compression.mode: \"STRIPS\"; expected \"ATTRIBUTES\", \"TRIANGLES\" or "
+       "\"INDICES\""},
       {"a stride the index codec cannot have",
        [](json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 3; },
        "byteStride: 3; expected 2 or 4 for TRIANGLES"},
@@ -235,6 +244,109 @@ TEST_F(GltfGeometry, CorruptMeshoptDataIsRefusedByName) {
       << error;
 }
 
+// The triangles as a sorted list of rotated triangles: Draco's edgebreaker reorders faces too.
+std::vector<std::array<float, 9>> sorted_triangles(const scene::Scene& scene) {
+  const std::vector<glm::vec3> rotated = triangles_of(scene);
+  std::vector<std::array<float, 9>> out;
+  for (size_t t = 0; t + 2 < rotated.size(); t += 3) {
+    std::array<float, 9> triangle;
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) triangle[size_t(k * 3 + c)] = rotated[t + size_t(k)][c];
+    out.push_back(triangle);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The mesh as one Draco-compressed buffer view (lossless: no quantization), as gltf-pipeline writes it.
+json draco_document(const PlainMesh& plain, std::string* compressed_out = nullptr) {
+  draco::TriangleSoupMeshBuilder builder;
+  const size_t faces = plain.indices.size() / 3;
+  builder.Start(static_cast<int>(faces));
+  const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  for (size_t f = 0; f < faces; ++f) {
+    const float* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = &plain.positions[size_t(plain.indices[f * 3 + size_t(k)]) * 3];
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(static_cast<uint32_t>(f)), p[0], p[1], p[2]);
+  }
+  std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  draco::Encoder encoder;
+  draco::EncoderBuffer encoded;
+  EXPECT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+  std::vector<unsigned char> bytes(encoded.data(), encoded.data() + encoded.size());
+  if (compressed_out) compressed_out->assign(encoded.data(), encoded.size());
+  const size_t length = bytes.size();
+  while (bytes.size() % 4) bytes.push_back(0);
+  return {{"asset", {{"version", "2.0"}}},
+          {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+          {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+          {"scenes", {{{"nodes", {0}}}}},
+          {"nodes", {{{"mesh", 0}}}},
+          {"meshes",
+           {{{"primitives",
+              {{{"attributes", {{"POSITION", 0}}},
+                {"indices", 1},
+                {"extensions",
+                 {{"KHR_draco_mesh_compression",
+                   {{"bufferView", 0}, {"attributes", {{"POSITION", mesh->attribute(position)->unique_id()}}}}}}}}}}}}},
+          {"buffers", {{{"byteLength", bytes.size()}, {"uri", data_uri(bytes)}}}},
+          {"bufferViews", {{{"buffer", 0}, {"byteLength", length}}}},
+          {"accessors",
+           {{{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}},
+            {{"componentType", 5125}, {"count", faces * 3}, {"type", "SCALAR"}}}}};
+}
+
+TEST_F(GltfGeometry, DracoCompressedPrimitivesDecodeToThePlainMesh) {
+  const PlainMesh mesh = curve_mesh(120);
+  const scene::Scene plain = load_ok(write(triangle(mesh.positions, mesh.indices), "scene/plain.gltf"));
+  const scene::Scene decoded = load_ok(write(draco_document(mesh), "scene/draco.gltf"));
+  EXPECT_EQ(decoded.triangle_count(), 118u);
+  EXPECT_EQ(sorted_triangles(decoded), sorted_triangles(plain));
+}
+
+TEST_F(GltfGeometry, DracoDataThatDoesNotMatchItsPrimitiveIsRefusedByName) {
+  const PlainMesh mesh = curve_mesh(30);
+  struct Case {
+    const char* what;
+    std::function<void(json&)> change;
+    std::string expected;
+  };
+  const std::string draco = "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression";
+  const std::vector<Case> cases = {
+      {"a point count the accessor does not declare", [](json& d) { d["accessors"][0]["count"] = 7; },
+       draco + ".attributes.POSITION: accessors[0].count 7 differs from the decoded mesh's"},
+      {"an index count the accessor does not declare", [](json& d) { d["accessors"][1]["count"] = 3; },
+       "meshes[0].primitives[0].indices: accessors[1].count 3 differs from the decoded mesh's 84 indices"},
+      {"an attribute id the mesh does not have",
+       [](json& d) { d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["POSITION"] = 9; },
+       draco + ".attributes.POSITION: the decoded mesh has no attribute with id 9"},
+      {"an attribute the primitive does not list",
+       [](json& d) { d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["NORMAL"] = 0; },
+       draco + ".attributes.NORMAL: the primitive has no attribute NORMAL"},
+      {"points instead of triangles", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 4.0; }, ""},
+      {"a strip", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 5; },
+       "meshes[0].primitives[0].mode: 5; KHR_draco_mesh_compression holds a triangle list, expected mode 4"},
+  };
+  for (const Case& c : cases) {
+    json doc = draco_document(mesh);
+    c.change(doc);
+    if (c.expected.empty()) {
+      EXPECT_EQ(load_ok(write(doc)).triangle_count(), 28u) << c.what;
+      continue;
+    }
+    const std::string error = error_of(write(doc));
+    EXPECT_NE(error.find(c.expected), std::string::npos) << c.what << ": " << error;
+  }
+  std::string compressed;
+  json doc = draco_document(mesh, &compressed);
+  std::vector<unsigned char> corrupt(compressed.begin(), compressed.begin() + long(compressed.size() / 2));
+  while (corrupt.size() % 4) corrupt.push_back(0);
+  doc["buffers"][0] = {{"byteLength", corrupt.size()}, {"uri", data_uri(corrupt)}};
+  doc["bufferViews"][0]["byteLength"] = corrupt.size();
+  const std::string error = error_of(write(doc));
+  EXPECT_NE(error.find(draco + ": the compressed mesh cannot be decoded"), std::string::npos) << error;
+}
+
 TEST_F(GltfGeometry, IntegersWrittenAsFloatsAreIntegers) {
   json doc = triangle();
   doc["nodes"][0]["mesh"] = 0.0;
@@ -253,9 +365,9 @@ TEST_F(GltfGeometry, BuffersNothingReadsAreNeverOpened) {
   doc["accessors"].push_back({{"componentType", 5126}, {"count", 3}, {"type", "NotaVEC3"}});  // unknown, unread
   EXPECT_EQ(load_ok(write(doc)).triangle_count(), 1u);
   doc["bufferViews"][0]["buffer"] = 1;
-  EXPECT_NE(error_of(write(doc)).find(
-                "attributes.POSITION (accessors[0]) -> bufferViews[0].buffer -> buffers[1]: has no uri; expected a uri "
-                "(only buffers[0] of a .glb may use the BIN chunk)"),
+  EXPECT_NE(error_of(write(doc))
+                .find("attributes.POSITION (accessors[0]) -> bufferViews[0].buffer -> buffers[1]: has no uri; expected a uri "
+                      "(only buffers[0] of a .glb may use the BIN chunk)"),
             std::string::npos);
   doc["bufferViews"][0]["buffer"] = 2;
   EXPECT_NE(error_of(write(doc)).find("buffers[2].uri: 'http://example.com/a.bin' is a URL"), std::string::npos);

@@ -2,6 +2,7 @@
 
 #include "gltf_accessors.h"
 #include "gltf_document.h"
+#include "gltf_draco.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace scene::gltf {
@@ -21,7 +23,8 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT
               kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 
 // Extensions whose content the player reads; any of them may be listed in extensionsRequired.
-const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression"};
+const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression",
+                                                    "KHR_draco_mesh_compression"};
 
 // What a scene using an extension the player does not read shows instead.
 std::string shown_instead(const std::string& extension) {
@@ -30,7 +33,6 @@ std::string shown_instead(const std::string& extension) {
   if (extension == "KHR_texture_transform") return "textures are drawn untransformed";
   if (extension == "KHR_lights_punctual") return "the scene is lit by the player's own light";
   if (extension.rfind("KHR_materials_", 0) == 0) return "materials show their core glTF properties";
-  if (extension == "KHR_draco_mesh_compression") return "primitives compressed with it are skipped";
   return "the file's core glTF content is shown";
 }
 
@@ -170,7 +172,8 @@ class Builder {
         report_.warnings.push_back(where + ": mode " + std::to_string(primitive.mode) + " is not triangles; skipped");
         continue;
       }
-      Mesh converted = convert(primitive, where);
+      const nlohmann::json& source = document_.root()["meshes"][static_cast<size_t>(index)]["primitives"][p];
+      Mesh converted = convert(primitive, source, where);
       if (converted.indices.empty()) continue;
       scene_.meshes.push_back(std::move(converted));
       ids.push_back(static_cast<int>(scene_.meshes.size()) - 1);
@@ -178,11 +181,44 @@ class Builder {
     return converted_[index] = ids;
   }
 
-  Mesh convert(const tinygltf::Primitive& primitive, const std::string& where) {
+  // Attribute `name` of a primitive, from its Draco mesh when the extension compresses it, else
+  // from its accessor.
+  template <int N>
+  std::vector<glm::vec<N, float>> attribute(const DracoPrimitive* draco, const std::string& name, int accessor,
+                                            const std::string& field, const std::vector<Format>& formats) {
+    if (draco)
+      if (const auto found = draco->attributes.find(name); found != draco->attributes.end()) {
+        if (draco->components.at(name) != N)
+          fail(field + ": expected " + std::to_string(N) + " components per element, got " +
+               std::to_string(draco->components.at(name)));
+        std::vector<glm::vec<N, float>> values(draco->points);
+        for (size_t i = 0; i < draco->points; ++i)
+          for (int c = 0; c < N; ++c) {
+            const float value = found->second[i * N + static_cast<size_t>(c)];
+            if (!std::isfinite(value))
+              fail(field + ": decoded element " + std::to_string(i) + " component " + std::to_string(c) +
+                   " is not a finite number");
+            values[i][c] = value;
+          }
+        return values;
+      }
+    return read_floats<N>(document_, accessor, field, formats);
+  }
+
+  Mesh convert(const tinygltf::Primitive& primitive, const nlohmann::json& source, const std::string& where) {
+    std::optional<DracoPrimitive> draco;
+    if (const auto extensions = source.find("extensions"); extensions != source.end() && extensions->is_object())
+      if (const auto compressed = extensions->find("KHR_draco_mesh_compression"); compressed != extensions->end()) {
+        if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
+          fail(where + ".mode: " + std::to_string(primitive.mode) +
+               "; KHR_draco_mesh_compression holds a triangle list, expected mode 4");
+        draco = decode_draco(document_, *compressed, primitive.attributes, primitive.indices, where);
+      }
+    const DracoPrimitive* decoded = draco ? &*draco : nullptr;
     const auto position_at = primitive.attributes.find("POSITION");
     if (position_at == primitive.attributes.end()) fail(where + ".attributes: POSITION is required");
     const auto positions =
-        read_floats<3>(document_, position_at->second, where + ".attributes.POSITION", position_formats(quantized_));
+        attribute<3>(decoded, "POSITION", position_at->second, where + ".attributes.POSITION", position_formats(quantized_));
     const size_t vertex_count = positions.size();
 
     // glTF 2.0, 3.7.2.1: all attribute accessors of a primitive have the same count; checked for the
@@ -195,17 +231,19 @@ class Builder {
 
     std::vector<glm::vec3> normals;
     if (auto at = primitive.attributes.find("NORMAL"); at != primitive.attributes.end()) {
-      normals = read_floats<3>(document_, at->second, where + ".attributes.NORMAL", normal_formats(quantized_));
+      normals = attribute<3>(decoded, "NORMAL", at->second, where + ".attributes.NORMAL", normal_formats(quantized_));
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
     std::vector<glm::vec2> uvs;
     if (auto at = primitive.attributes.find("TEXCOORD_0"); at != primitive.attributes.end()) {
-      uvs = read_floats<2>(document_, at->second, where + ".attributes.TEXCOORD_0", texcoord_formats(quantized_));
+      uvs = attribute<2>(decoded, "TEXCOORD_0", at->second, where + ".attributes.TEXCOORD_0", texcoord_formats(quantized_));
       if (uvs.size() != vertex_count) fail(where + ".attributes.TEXCOORD_0: count differs from POSITION's");
     }
 
     std::vector<uint32_t> indices;
-    if (primitive.indices >= 0) {
+    if (decoded) {
+      indices = draco->indices;  // decode_draco has checked every index against the points
+    } else if (primitive.indices >= 0) {
       read_accessor(
           document_, primitive.indices, where + ".indices",
           {{kUnsignedByte, false}, {kUnsignedShort, false}, {kUnsignedInt, false}}, 1,
@@ -233,8 +271,8 @@ class Builder {
         const double length = glm::length(cross);
         const glm::vec3 normal = length > 0.0 && std::isfinite(length) ? glm::vec3(cross / length) : glm::vec3(0.0f);
         for (int k = 0; k < 3; ++k) {
-          const uint32_t source = indices[t + static_cast<size_t>(k)];
-          mesh.vertices.push_back({positions[source], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[source]});
+          const uint32_t from = indices[t + static_cast<size_t>(k)];
+          mesh.vertices.push_back({positions[from], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[from]});
           mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
         }
       }

@@ -80,8 +80,7 @@ std::string Document::parse() {
   for (size_t m = 0; meshes && m < meshes->size() && m < model_.meshes.size(); ++m) {
     const json* primitives = find((*meshes)[m], "primitives");
     for (size_t p = 0; primitives && p < primitives->size() && p < model_.meshes[m].primitives.size(); ++p)
-      if (const json* indices = find((*primitives)[p], "indices"))
-        model_.meshes[m].primitives[p].indices = indices->get<int>();
+      if (const json* indices = find((*primitives)[p], "indices")) model_.meshes[m].primitives[p].indices = indices->get<int>();
   }
   return {};
 }
@@ -121,8 +120,7 @@ const std::vector<unsigned char>& Document::buffer(int index, const std::string&
       fail(where + ".byteLength: " + std::to_string(byte_length) + " bytes, but the GLB's BIN chunk has " +
            std::to_string(glb_.bin.size()));
     bytes.assign(glb_.bin.begin(), glb_.bin.begin() + static_cast<std::ptrdiff_t>(byte_length));
-  } else if (const json* extensions = find(source, "extensions");
-             extensions && find(*extensions, "EXT_meshopt_compression")) {
+  } else if (const json* extensions = find(source, "extensions"); extensions && find(*extensions, "EXT_meshopt_compression")) {
     fail(where + ": a meshopt fallback buffer without data; expected it to be read only through EXT_meshopt_compression");
   } else {
     fail(where + ": has no uri" + std::string(index == 0 ? " and the file has no BIN chunk" : "") +
@@ -136,8 +134,7 @@ Bytes Document::view_bytes(int index, const std::string& field) {
   const std::string where = field + " -> bufferViews[" + std::to_string(index) + "]";
   if (index < 0 || static_cast<size_t>(index) >= model_.bufferViews.size()) fail(where + ": out of range");
   const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(index)];
-  if (auto found = decoded_views_.find(index); found != decoded_views_.end())
-    return {found->second.data(), found->second.size()};
+  if (auto found = decoded_views_.find(index); found != decoded_views_.end()) return {found->second.data(), found->second.size()};
   const json& source = entry(root_, "bufferViews", index);
   if (const json* extensions = find(source, "extensions"))
     if (const json* meshopt = find(*extensions, "EXT_meshopt_compression")) {
@@ -147,8 +144,7 @@ Bytes Document::view_bytes(int index, const std::string& field) {
         fail(where + ".extensions.EXT_meshopt_compression: bytes " + std::to_string(request.byte_offset) + ".." +
              std::to_string(request.byte_offset + request.byte_length) + " lie beyond its buffer of " +
              std::to_string(data.size()) + " bytes");
-      std::vector<unsigned char> decoded =
-          decode_meshopt(request, data.data() + request.byte_offset, view.byteLength, where);
+      std::vector<unsigned char> decoded = decode_meshopt(request, data.data() + request.byte_offset, view.byteLength, where);
       auto& stored = decoded_views_[index] = std::move(decoded);
       return {stored.data(), stored.size()};
     }

@@ -59,7 +59,8 @@ MeshoptView meshopt_view(const json& extension, size_t view_length, size_t view_
   else if (filter == "EXPONENTIAL")
     view.filter = MeshoptFilter::exponential;
   else
-    fail(at + ".filter: " + extension["filter"].dump() + "; expected \"NONE\", \"OCTAHEDRAL\", \"QUATERNION\" or \"EXPONENTIAL\"");
+    fail(at + ".filter: " + extension["filter"].dump() +
+         "; expected \"NONE\", \"OCTAHEDRAL\", \"QUATERNION\" or \"EXPONENTIAL\"");
 
   const size_t stride = view.byte_stride;
   if (view.mode == MeshoptMode::attributes) {
@@ -83,7 +84,8 @@ MeshoptView meshopt_view(const json& extension, size_t view_length, size_t view_
     fail(at + ".count: " + std::to_string(view.count) + " exceeds the limit of " + std::to_string(kMaxElements));
   const size_t decoded = view.count * stride;  // both bounded above: no overflow
   if (decoded > view_length)
-    fail(at + ": count x byteStride is " + std::to_string(decoded) + " bytes; the buffer view has " + std::to_string(view_length));
+    fail(at + ": count x byteStride is " + std::to_string(decoded) + " bytes; the buffer view has " +
+         std::to_string(view_length));
   if (view_length > kMaxFileBytes)
     fail(at + ": a decoded buffer view of " + std::to_string(view_length) + " bytes; expected at most " +
          std::to_string(kMaxFileBytes));

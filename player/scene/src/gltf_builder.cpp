@@ -24,13 +24,12 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT
 
 // Extensions whose content the player reads; any of them may be listed in extensionsRequired.
 const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression",
-                                                    "KHR_draco_mesh_compression"};
+                                                    "KHR_draco_mesh_compression", "KHR_texture_transform"};
 
 // What a scene using an extension the player does not read shows instead.
 std::string shown_instead(const std::string& extension) {
   if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp" || extension == "MSFT_texture_dds")
     return "textures whose only source is in that format are drawn white";
-  if (extension == "KHR_texture_transform") return "textures are drawn untransformed";
   if (extension == "KHR_lights_punctual") return "the scene is lit by the player's own light";
   if (extension.rfind("KHR_materials_", 0) == 0) return "materials show their core glTF properties";
   return "the file's core glTF content is shown";
@@ -53,6 +52,15 @@ std::vector<Format> texcoord_formats(bool quantized) {
 }
 
 class Builder {
+  // How a material's base colour texture reads its coordinates: the TEXCOORD set, and the
+  // KHR_texture_transform matrix baked into the mesh's UVs at load (exact: the transform is affine,
+  // and each converted mesh has exactly one material).
+  struct UvMapping {
+    int set = 0;
+    glm::dmat3 transform{1.0};
+    bool transformed = false;
+  };
+
  public:
   Builder(Document& document, LoadReport& report)
       : document_(document),
@@ -234,10 +242,23 @@ class Builder {
       normals = attribute<3>(decoded, "NORMAL", at->second, where + ".attributes.NORMAL", normal_formats(quantized_));
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
+    const int material_id = material(primitive.material, where);
+    const UvMapping& mapping = uv_mappings_[material_id];
+    const std::string uv_name = "TEXCOORD_" + std::to_string(mapping.set);
     std::vector<glm::vec2> uvs;
-    if (auto at = primitive.attributes.find("TEXCOORD_0"); at != primitive.attributes.end()) {
-      uvs = attribute<2>(decoded, "TEXCOORD_0", at->second, where + ".attributes.TEXCOORD_0", texcoord_formats(quantized_));
-      if (uvs.size() != vertex_count) fail(where + ".attributes.TEXCOORD_0: count differs from POSITION's");
+    if (auto at = primitive.attributes.find(uv_name); at != primitive.attributes.end()) {
+      uvs = attribute<2>(decoded, uv_name, at->second, where + ".attributes." + uv_name, texcoord_formats(quantized_));
+      if (uvs.size() != vertex_count) fail(where + ".attributes." + uv_name + ": count differs from POSITION's");
+      if (mapping.transformed)
+        for (glm::vec2& uv : uvs) {
+          const glm::dvec3 moved = mapping.transform * glm::dvec3(uv, 1.0);
+          if (!std::isfinite(moved.x) || !std::isfinite(moved.y) || std::abs(moved.x) > 3e38 || std::abs(moved.y) > 3e38)
+            fail(where + ".attributes." + uv_name + ": KHR_texture_transform takes a coordinate beyond the float range");
+          uv = glm::vec2(moved);
+        }
+    } else if (scene_.materials[static_cast<size_t>(material_id)].base_color_texture >= 0 && mapping.set != 0) {
+      report_.warnings.push_back(where + ".attributes: the material's base colour texture reads " + uv_name +
+                                 ", which the primitive lacks; it is sampled at (0, 0)");
     }
 
     std::vector<uint32_t> indices;
@@ -261,7 +282,7 @@ class Builder {
     indices = to_triangle_list(indices, primitive.mode);
 
     Mesh mesh;
-    mesh.material = material(primitive.material, where);
+    mesh.material = material_id;
     if (normals.empty()) {
       // The spec: without NORMAL, flat normals. Each triangle gets its own three vertices.
       mesh.vertices.reserve(indices.size());
@@ -327,13 +348,56 @@ class Builder {
       material.base_color[c] = static_cast<float>(std::clamp(factor[static_cast<size_t>(c)], 0.0, 1.0));
     }
     const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
+    UvMapping mapping;
     if (info.index >= 0) {
-      if (info.texCoord != 0)
-        report_.warnings.push_back(field + ".pbrMetallicRoughness.baseColorTexture.texCoord: only set 0 is used");
       material.base_color_texture = texture(info.index, field + ".pbrMetallicRoughness.baseColorTexture.index");
+      mapping.set = info.texCoord;
+      const nlohmann::json& texture_info =
+          document_.root()["materials"][static_cast<size_t>(index)]["pbrMetallicRoughness"]["baseColorTexture"];
+      if (const auto extensions = texture_info.find("extensions"); extensions != texture_info.end() && extensions->is_object())
+        if (const auto transform = extensions->find("KHR_texture_transform"); transform != extensions->end())
+          read_texture_transform(*transform, field + ".pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
+                                 mapping);
     }
     scene_.materials.push_back(material);
-    return materials_[index] = static_cast<int>(scene_.materials.size()) - 1;
+    const int id = static_cast<int>(scene_.materials.size()) - 1;
+    uv_mappings_[id] = mapping;
+    return materials_[index] = id;
+  }
+
+  // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv with R taking (u, v) to
+  // (u cos r + v sin r, -u sin r + v cos r): counter-clockwise as the image is seen, v pointing down
+  // in glTF's UV space. Khronos' TextureTransformTest sample tells the direction: its arrows reach
+  // the green markers (the red marker is the opposite rotation). texCoord, when given, replaces the
+  // texture info's set.
+  static void read_texture_transform(const nlohmann::json& extension, const std::string& field, UvMapping& mapping) {
+    if (!extension.is_object()) fail(field + ": expected an object");
+    auto vec2 = [&](const char* key, glm::dvec2 fallback) {
+      const auto found = extension.find(key);
+      if (found == extension.end()) return fallback;
+      if (!found->is_array() || found->size() != 2 || !(*found)[0].is_number() || !(*found)[1].is_number())
+        fail(field + "." + key + ": expected 2 numbers");
+      const glm::dvec2 value((*found)[0].get<double>(), (*found)[1].get<double>());
+      if (!std::isfinite(value.x) || !std::isfinite(value.y)) fail(field + "." + key + ": expected finite numbers");
+      return value;
+    };
+    const glm::dvec2 offset = vec2("offset", glm::dvec2(0.0)), scale = vec2("scale", glm::dvec2(1.0));
+    double rotation = 0.0;
+    if (const auto found = extension.find("rotation"); found != extension.end()) {
+      if (!found->is_number() || !std::isfinite(found->get<double>())) fail(field + ".rotation: expected a finite number");
+      rotation = found->get<double>();
+    }
+    if (const auto found = extension.find("texCoord"); found != extension.end()) {
+      if (!found->is_number_unsigned() || found->get<uint64_t>() > 1u << 16)
+        fail(field + ".texCoord: " + found->dump() + "; expected a texture coordinate set index");
+      mapping.set = found->get<int>();
+    }
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const glm::dmat3 translation(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+    const glm::dmat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1);
+    const glm::dmat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    mapping.transform = translation * rotate * scaling;
+    mapping.transformed = true;
   }
 
   int texture(int index, const std::string& field) {
@@ -383,6 +447,7 @@ class Builder {
   const tinygltf::Model& model_;
   LoadReport& report_;
   const bool quantized_;
+  std::map<int, UvMapping> uv_mappings_;  // by Scene material index
   int white_ = -1;
   Scene scene_;
   std::map<int, std::vector<int>> converted_;

@@ -15,8 +15,8 @@ namespace scene::gltf {
 
 struct DracoPrimitive {
   size_t points = 0;
-  std::vector<uint32_t> indices;                           // a triangle list
-  std::map<std::string, std::vector<float>> attributes;   // glTF attribute name -> points x components
+  std::vector<uint32_t> indices;                         // a triangle list
+  std::map<std::string, std::vector<float>> attributes;  // glTF attribute name -> points x components
   std::map<std::string, int> components;
 };
 

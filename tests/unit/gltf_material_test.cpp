@@ -1,0 +1,112 @@
+// Materials as files describe them: which texture coordinate set a texture reads, and
+// KHR_texture_transform, baked into the mesh's UVs at load and checked against the extension's
+// formula computed here.
+#include "gltf_fixture.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+
+namespace {
+
+class GltfMaterial : public GltfLoader {
+ protected:
+  // triangle() with two UV sets and a 2x2 base colour texture reading set `set`.
+  json textured(int set) {
+    const fs::path png = dir_ / "scene" / "albedo.png";
+    const unsigned char pixels[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+    auto output = OIIO::ImageOutput::create(png.string());
+    EXPECT_TRUE(output && output->open(png.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::UINT8)));
+    EXPECT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, pixels));
+    output->close();
+    json doc = triangle();
+    std::vector<unsigned char> bytes;
+    for (const glm::vec2& uv : kSet0) append<float>(bytes, {uv.x, uv.y});
+    for (const glm::vec2& uv : kSet1) append<float>(bytes, {uv.x, uv.y});
+    doc["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}});
+    doc["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 24}});
+    doc["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 24}, {"byteLength", 24}});
+    doc["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    doc["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+    doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 3;
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    doc["images"] = {{{"uri", "albedo.png"}}};
+    doc["textures"] = {{{"source", 0}}};
+    doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", set}}}}}}};
+    return doc;
+  }
+
+  std::vector<glm::vec2> uvs_of(const json& doc) {
+    const scene::Scene loaded = load_ok(write(doc));
+    std::vector<glm::vec2> out;
+    for (uint32_t index : loaded.meshes.at(0).indices) out.push_back(loaded.meshes[0].vertices.at(index).uv);
+    return out;
+  }
+
+  const std::vector<glm::vec2> kSet0 = {{0, 0}, {1, 0}, {0, 1}};
+  const std::vector<glm::vec2> kSet1 = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.75f}};
+};
+
+void expect_uvs(const std::vector<glm::vec2>& actual, const std::vector<glm::vec2>& expected) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_NEAR(actual[i].x, expected[i].x, 1e-6f) << "vertex " << i;
+    EXPECT_NEAR(actual[i].y, expected[i].y, 1e-6f) << "vertex " << i;
+  }
+}
+
+TEST_F(GltfMaterial, ATextureReadsTheSetItsTexCoordNames) {
+  expect_uvs(uvs_of(textured(0)), kSet0);
+  expect_uvs(uvs_of(textured(1)), kSet1);
+}
+
+// The extension's formula: scale, then rotate counter-clockwise as the image is seen (v down),
+// then offset: (u, v) -> (sx u cos r + sy v sin r + ox, -sx u sin r + sy v cos r + oy).
+glm::vec2 transformed(glm::vec2 uv, glm::vec2 offset, float rotation, glm::vec2 scale) {
+  const double u = double(scale.x) * uv.x, v = double(scale.y) * uv.y, c = std::cos(rotation), s = std::sin(rotation);
+  return glm::vec2(float(u * c + v * s + offset.x), float(-u * s + v * c + offset.y));
+}
+
+TEST_F(GltfMaterial, KhrTextureTransformIsBakedIntoTheUvs) {
+  for (const float rotation : {0.0f, 0.392699f, 1.5707963f, -2.0f}) {
+    json doc = textured(1);
+    doc["extensionsUsed"] = doc["extensionsRequired"] = {"KHR_texture_transform"};
+    doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+        {"KHR_texture_transform", {{"offset", {0.5, -0.25}}, {"rotation", rotation}, {"scale", {2, 3}}}}};
+    std::vector<glm::vec2> expected;
+    for (const glm::vec2& uv : kSet1) expected.push_back(transformed(uv, {0.5f, -0.25f}, rotation, {2, 3}));
+    expect_uvs(uvs_of(doc), expected);
+  }
+}
+
+TEST_F(GltfMaterial, TheTransformsTexCoordReplacesTheTextureInfos) {
+  json doc = textured(1);
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"offset", {1, 2}}, {"texCoord", 0}}}};
+  expect_uvs(uvs_of(doc), {{1, 2}, {2, 2}, {1, 3}});
+}
+
+TEST_F(GltfMaterial, AMalformedTransformIsRefusedByField) {
+  json doc = textured(0);
+  const std::string field = "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"rotation", "x"}}}};
+  EXPECT_NE(error_of(write(doc)).find(field + ".rotation: expected a finite number"), std::string::npos);
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {{"KHR_texture_transform", {{"scale", {1}}}}};
+  EXPECT_NE(error_of(write(doc)).find(field + ".scale: expected 2 numbers"), std::string::npos);
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+      {"KHR_texture_transform", {{"scale", {1e300, 1e300}}}}};
+  EXPECT_NE(error_of(write(doc)).find("KHR_texture_transform takes a coordinate beyond the float range"), std::string::npos);
+}
+
+TEST_F(GltfMaterial, ASetThePrimitiveLacksIsSampledAtTheOriginWithAWarning) {
+  json doc = textured(3);
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  EXPECT_EQ(report.warnings, std::vector<std::string>{"meshes[0].primitives[0].attributes: the material's base colour texture "
+                                                      "reads TEXCOORD_3, which the primitive lacks; it is sampled at (0, 0)"});
+}
+
+}  // namespace

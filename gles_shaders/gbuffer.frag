@@ -1,5 +1,6 @@
 // G-buffer: albedo, view-space shading and face normals (gbuffer_normals.glsl), linear view depth.
 // HAS_BASECOLOR_TEXTURE selects the textured variant; untextured materials skip the fetch entirely.
+// ALPHA_MASK: the alpha-tested variant, only for materials whose alphaMode asks for it.
 precision highp float;
 
 #include "gbuffer_normals.glsl"
@@ -11,6 +12,9 @@ in vec2 v_uv;
 uniform vec4 u_base_color;
 #ifdef HAS_BASECOLOR_TEXTURE
 uniform highp sampler2D u_base_color_texture;
+#endif
+#ifdef ALPHA_MASK
+uniform float u_alpha_cutoff;
 #endif
 
 layout(location = 0) out vec4 o_albedo;
@@ -25,6 +29,10 @@ void main() {
   vec4 albedo = u_base_color;
 #ifdef HAS_BASECOLOR_TEXTURE
   albedo *= texture(u_base_color_texture, v_uv);
+#endif
+#ifdef ALPHA_MASK
+  // glTF's MASK: fully opaque at or above the cutoff, absent below it (the depth prepass cuts alike).
+  if (albedo.a < u_alpha_cutoff) discard;
 #endif
   vec3 n = v_view_normal;
   float len = length(n);

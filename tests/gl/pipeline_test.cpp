@@ -693,6 +693,60 @@ TEST_P(Pipeline, BaseColorTextureLandsWhereItsUvsSay) {
   EXPECT_EQ(h.renderer.gl_error(), "");
 }
 
+TEST_P(Pipeline, AlphaMaskCutsWhereTheTextureIsTransparentInBothPasses) {
+  // A square at z = 0 whose 2x1 texture is transparent on the left and opaque on the right, in front
+  // of a larger green square at z = -1. MASK cuts the left half in the depth prepass and the
+  // G-buffer alike: there the green square behind shows, at its own depth.
+  for (const scene::AlphaMode mode : {scene::AlphaMode::opaque, scene::AlphaMode::mask})
+    for (const render::Prepass prepass : {render::Prepass::off, render::Prepass::on}) {
+      scene::Scene built;
+      scene::Material front, back;
+      front.base_color_texture = 0;
+      front.alpha_mode = mode;
+      front.alpha_cutoff = 0.5f;
+      back.base_color = {0, 1, 0, 1};
+      built.materials = {front, back};
+      scene::Texture texture;
+      texture.width = 2;
+      texture.height = 1;
+      texture.rgba = {255, 0, 0, 0, 255, 0, 0, 255};
+      texture.mag = scene::Filter::nearest;
+      texture.mipmaps = false;
+      built.textures = {texture};
+      scene::add_instance(built, scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0));
+      scene::add_instance(built, scene::make_quad({-3, -3, -1}, {6, 0, 0}, {0, 6, 0}, 1));
+      scene::update_bounds(built);
+      render::FrameSettings settings = small_settings();
+      settings.ao = false;
+      settings.prepass = prepass;
+      scene::Framing framing = square_filling_the_view();
+      framing.distance = 1.5;
+      Harness h;
+      ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, framing));
+      const auto color = h.renderer.read_color();  // row 0 at the top
+      const auto depth = h.renderer.read_linear_depth();
+      const glm::ivec2 left = h.pixel_of({-0.5, 0.0, 0.0}), right = h.pixel_of({0.5, 0.0, 0.0});
+      auto rgb = [&](glm::ivec2 p) {
+        const size_t at = static_cast<size_t>(((kSide - 1 - p.y) * kSide + p.x) * 4);
+        return glm::ivec3(color[at], color[at + 1], color[at + 2]);
+      };
+      auto depth_at = [&](glm::ivec2 p) { return depth[static_cast<size_t>(p.y * kSide + p.x)]; };
+      const std::string what =
+          std::string(mode == scene::AlphaMode::mask ? "mask" : "opaque") + (prepass == render::Prepass::on ? ", prepass" : "");
+      EXPECT_GT(rgb(right).r, 100) << what;
+      EXPECT_LT(rgb(right).g, 10) << what;
+      if (mode == scene::AlphaMode::mask) {
+        EXPECT_GT(rgb(left).g, 100) << what << ": the green square behind shows through the cut";
+        EXPECT_LT(rgb(left).r, 10) << what;
+        EXPECT_GT(depth_at(left), depth_at(right) + 0.5f) << what << ": the cut keeps the depth of what is behind";
+      } else {
+        EXPECT_GT(rgb(left).r, 100) << what;
+        EXPECT_NEAR(depth_at(left), depth_at(right), 0.05f) << what;
+      }
+      EXPECT_EQ(h.renderer.gl_error(), "") << what;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, Pipeline, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace

@@ -109,4 +109,29 @@ TEST_F(GltfMaterial, ASetThePrimitiveLacksIsSampledAtTheOriginWithAWarning) {
                                                       "reads TEXCOORD_3, which the primitive lacks; it is sampled at (0, 0)"});
 }
 
+TEST_F(GltfMaterial, AlphaModesAndCutoffs) {
+  json doc = textured(0);
+  scene::Scene loaded = load_ok(write(doc));
+  EXPECT_EQ(loaded.materials.at(1).alpha_mode, scene::AlphaMode::opaque);
+  EXPECT_FALSE(loaded.materials.at(1).alpha_tested());
+  doc["materials"][0]["alphaMode"] = "MASK";
+  doc["materials"][0]["alphaCutoff"] = 0.25;
+  loaded = load_ok(write(doc));
+  EXPECT_EQ(loaded.materials.at(1).alpha_mode, scene::AlphaMode::mask);
+  EXPECT_FLOAT_EQ(loaded.materials.at(1).alpha_cutoff, 0.25f);
+  doc["materials"][0].erase("alphaCutoff");
+  EXPECT_FLOAT_EQ(load_ok(write(doc)).materials.at(1).alpha_cutoff, 0.5f);  // glTF's default
+  doc["materials"][0]["alphaMode"] = "BLEND";
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  EXPECT_EQ(out.materials.at(1).alpha_mode, scene::AlphaMode::blend);
+  EXPECT_TRUE(out.materials.at(1).alpha_tested());
+  EXPECT_EQ(report.warnings, std::vector<std::string>{"materials[0].alphaMode: BLEND is drawn as MASK with alphaCutoff 0.5 "
+                                                      "(blending is not supported yet)"});
+  doc["materials"][0]["alphaMode"] = "CLEAR";
+  EXPECT_NE(error_of(write(doc)).find("materials[0].alphaMode: \"CLEAR\"; expected \"OPAQUE\", \"MASK\" or \"BLEND\""),
+            std::string::npos);
+}
+
 }  // namespace

@@ -57,14 +57,20 @@ void draw_scene(const PassContext& context, bool depth_only) {
   const RasterProgram& depth_program = modules ? programs.module_depth_only : programs.depth_only;
   const RasterProgram& textured_program = modules ? programs.module_gbuffer_textured : programs.gbuffer_textured;
   const RasterProgram& plain_program = modules ? programs.module_gbuffer_plain : programs.gbuffer_plain;
+  const RasterProgram& masked_program = modules ? programs.module_gbuffer_masked : programs.gbuffer_masked;
+  const RasterProgram& masked_depth_program = modules ? programs.module_depth_masked : programs.depth_masked;
   if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, context.targets.module_ubo.id());
   const glm::mat4 projection(context.view.projection);
   const RasterProgram* bound = nullptr;
   for (const SceneGpu::Draw& draw : scene.draws()) {
     const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
     const bool textured = material.base_color_texture >= 0;
-    const bool fetches = textured || !untextured_variant;
-    const RasterProgram* program = depth_only ? &depth_program : fetches ? &textured_program : &plain_program;
+    const bool masked = material.alpha_tested();
+    const bool fetches = textured || !untextured_variant || masked;
+    const RasterProgram* program = depth_only ? (masked ? &masked_depth_program : &depth_program)
+                                   : masked   ? &masked_program
+                                   : fetches  ? &textured_program
+                                              : &plain_program;
     if (program != bound) {
       gl::api.UseProgram(program->program->id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
@@ -78,7 +84,10 @@ void draw_scene(const PassContext& context, bool depth_only) {
     if (!depth_only) {
       const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
       gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+    }
+    if (!depth_only || masked) {
       gl::api.Uniform4fv(program->base_color, 1, glm::value_ptr(material.base_color));
+      if (masked) gl::api.Uniform1f(program->alpha_cutoff, material.alpha_cutoff);
       if (fetches) {
         gl::api.ActiveTexture(GL_TEXTURE0);
         gl::api.BindTexture(GL_TEXTURE_2D, textured ? scene.textures()[static_cast<size_t>(material.base_color_texture)].id()

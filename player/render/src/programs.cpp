@@ -6,6 +6,8 @@
 namespace render {
 namespace {
 
+const std::string kMasked = "#define HAS_BASECOLOR_TEXTURE 1\n#define ALPHA_MASK 1\n";
+
 bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragment, const std::string& defines,
                   std::string& error) {
   out.program = cache.get({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, fragment}}, defines, error);
@@ -15,6 +17,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.normal_matrix = gl::uniform(*out.program, "u_normal_matrix");
   out.base_color = gl::uniform(*out.program, "u_base_color");
   out.texture = gl::uniform(*out.program, "u_base_color_texture");
+  out.alpha_cutoff = gl::uniform(*out.program, "u_alpha_cutoff");
   return true;
 }
 
@@ -41,7 +44,9 @@ bool Programs::build(gl::Session& session, std::string& error) {
   gl::ProgramCache& cache = *cache_;
   if (!build_raster(cache, gbuffer_plain, "gbuffer.frag", "", error) ||
       !build_raster(cache, gbuffer_textured, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
-      !build_raster(cache, depth_only, "depth_only.frag", "", error))
+      !build_raster(cache, depth_only, "depth_only.frag", "", error) ||
+      !build_raster(cache, gbuffer_masked, "gbuffer.frag", kMasked, error) ||
+      !build_raster(cache, depth_masked, "depth_only.frag", kMasked, error))
     return false;
   if (!(depth_chain = build_compute(cache, "depth_chain.comp", "", {"u_linear_depth"}, error)) ||
       !(upsample = build_compute(cache, "upsample.comp", "", {"u_ao", "u_linear_depth", "u_normal"}, error)) ||
@@ -129,7 +134,9 @@ bool Programs::build_module_programs(std::string& error) {
   const std::string modules = "#define LIGHTFIELD_MODULES 1\n";
   if (!build_raster(*cache_, module_gbuffer_plain, "gbuffer.frag", modules, error) ||
       !build_raster(*cache_, module_gbuffer_textured, "gbuffer.frag", modules + "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
-      !build_raster(*cache_, module_depth_only, "depth_only.frag", modules, error)) {
+      !build_raster(*cache_, module_depth_only, "depth_only.frag", modules, error) ||
+      !build_raster(*cache_, module_gbuffer_masked, "gbuffer.frag", modules + kMasked, error) ||
+      !build_raster(*cache_, module_depth_masked, "depth_only.frag", modules + kMasked, error)) {
     module_gbuffer_plain = RasterProgram{};
     return false;
   }

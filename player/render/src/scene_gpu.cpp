@@ -135,10 +135,13 @@ void SceneGpu::finish() {
   const scene::Scene& scene = *source_;
   for (const scene::Instance& instance : scene.instances)
     draws_.push_back({instance.mesh, scene.meshes[static_cast<size_t>(instance.mesh)].material, instance.world});
-  std::stable_sort(draws_.begin(), draws_.end(), [&](const Draw& a, const Draw& b) {
-    return (materials_[static_cast<size_t>(a.material)].base_color_texture >= 0) <
-           (materials_[static_cast<size_t>(b.material)].base_color_texture >= 0);
-  });
+  // Untextured, textured, then alpha-tested: one program switch per group, and the tested ones,
+  // which lose early depth rejection, drawn last over the depth the others have laid.
+  auto group = [&](const Draw& draw) {
+    const scene::Material& material = materials_[static_cast<size_t>(draw.material)];
+    return material.alpha_tested() ? 2 : material.base_color_texture >= 0 ? 1 : 0;
+  };
+  std::stable_sort(draws_.begin(), draws_.end(), [&](const Draw& a, const Draw& b) { return group(a) < group(b); });
   bounds_ = scene.bounds;
   radius_ = scene.bounds.radius();
   centre_ = scene.bounds.centre();

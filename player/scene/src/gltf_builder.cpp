@@ -340,6 +340,22 @@ class Builder {
     const std::string field = "materials[" + std::to_string(index) + "]";
     Material material;
     material.double_sided = source.doubleSided;
+    if (source.alphaMode == "MASK" || source.alphaMode == "BLEND") {
+      material.alpha_mode = source.alphaMode == "MASK" ? AlphaMode::mask : AlphaMode::blend;
+      if (!std::isfinite(source.alphaCutoff) || source.alphaCutoff < 0.0)
+        fail(field + ".alphaCutoff: " + std::to_string(source.alphaCutoff) + "; expected a number of at least 0");
+      material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
+      // Blending needs a forward pass after the deferred frame; until then a blended material is
+      // cut at 0.5, which keeps labels and foliage legible instead of drawing their transparent
+      // texels as an opaque colour.
+      if (material.alpha_mode == AlphaMode::blend) {
+        material.alpha_cutoff = 0.5f;
+        report_.warnings.push_back(field +
+                                   ".alphaMode: BLEND is drawn as MASK with alphaCutoff 0.5 (blending is not supported yet)");
+      }
+    } else if (source.alphaMode != "OPAQUE") {
+      fail(field + ".alphaMode: \"" + source.alphaMode + "\"; expected \"OPAQUE\", \"MASK\" or \"BLEND\"");
+    }
     const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
     if (factor.size() != 4) fail(field + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
     for (int c = 0; c < 4; ++c) {

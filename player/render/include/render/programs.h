@@ -15,7 +15,7 @@ namespace render {
 
 struct RasterProgram {
   const gl::Program* program = nullptr;
-  GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1;
+  GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1;
 };
 
 class Programs {
@@ -51,7 +51,9 @@ class Programs {
   GLint rotate_quarter_turns = -1;
 
   RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
+  RasterProgram gbuffer_masked, depth_masked;  // alpha-tested materials (scene::Material::alpha_tested)
   RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs
+  RasterProgram module_gbuffer_masked, module_depth_masked;
   const gl::Program *depth_chain = nullptr, *blur_gaussian = nullptr, *blur_bilateral = nullptr, *blur_denoise = nullptr,
                     *upsample = nullptr, *temporal = nullptr;
   GLint depth_chain_source_level = -1;

@@ -39,7 +39,7 @@ class SceneGpu {
   const std::vector<Mesh>& meshes() const { return meshes_; }
   const std::vector<gl::Texture>& textures() const { return textures_; }
   const std::vector<scene::Material>& materials() const { return materials_; }
-  const std::vector<Draw>& draws() const { return draws_; }  // untextured first, then textured
+  const std::vector<Draw>& draws() const { return draws_; }  // untextured first, then textured, then alpha-tested
   // The scene's world-space box, known once ready().
   const scene::Bounds& bounds() const { return bounds_; }
   double radius() const { return radius_; }

@@ -32,10 +32,16 @@ struct Texture {
   bool repeat_s = true, repeat_t = true;
 };
 
+// glTF's alphaMode. blend is drawn as mask at its cutoff until a forward pass exists (the loader warns).
+enum class AlphaMode { opaque, mask, blend };
+
 struct Material {
   glm::vec4 base_color{1.0f};
   int base_color_texture = -1;  // index into Scene::textures
   bool double_sided = false;
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  float alpha_cutoff = 0.5f;  // mask: fragments whose alpha is below it are not drawn
+  bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }
 };
 
 struct Instance {

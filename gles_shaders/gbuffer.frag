@@ -10,6 +10,7 @@ in vec3 v_view_normal;
 in vec2 v_uv;
 
 uniform vec4 u_base_color;
+uniform float u_lit;  // 1, or 0 for an unlit material: kept in the albedo's alpha for the present pass
 #ifdef HAS_BASECOLOR_TEXTURE
 uniform highp sampler2D u_base_color_texture;
 #endif
@@ -45,7 +46,7 @@ void main() {
   vec3 face = cross(dFdx(v_view_position), dFdy(v_view_position));
   float face_length = length(face);
   face = face_length > 1e-30 ? face / face_length : n;
-  o_albedo = vec4(albedo.rgb, 1.0);
+  o_albedo = vec4(albedo.rgb, u_lit);
   o_normal = vec4(octahedron_encode(n), octahedron_encode(face));
   o_linear_depth = -v_view_position.z;
 #ifdef LIGHTFIELD_MODULES

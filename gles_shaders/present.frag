@@ -73,12 +73,14 @@ void main() {
   float t = (depth - composite.near_plane) / (composite.far_plane - composite.near_plane);
   fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
 #else
-  vec3 albedo = texelFetch(u_albedo, pixel, 0).rgb;
+  vec4 surface = texelFetch(u_albedo, pixel, 0);  // a = 0: an unlit material (KHR_materials_unlit)
   float ambient = composite.ambient;
   float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);
   // --ao-strength darkens or lightens the shaded image only: the AO view and every read-back show the
   // AO as computed, which is what accuracy is measured on.
   float visibility = pow(max(1.0 - ao, 0.0), composite.ao_strength);
-  fragment = shaded(albedo * (ambient + (1.0 - ambient) * diffuse) * visibility * fade);
+  // A select, not a mix: lit pixels keep exactly the value they had before unlit materials existed.
+  float light = surface.a > 0.5 ? (ambient + (1.0 - ambient) * diffuse) * visibility : 1.0;
+  fragment = shaded(surface.rgb * light * fade);
 #endif
 }

@@ -747,6 +747,47 @@ TEST_P(Pipeline, AlphaMaskCutsWhereTheTextureIsTransparentInBothPasses) {
     }
 }
 
+TEST_P(Pipeline, UnlitMaterialsShowTheirBaseColourNeitherLitNorOccluded) {
+  // Two squares meeting in a corner (so the AO is well above zero there), each of base colour
+  // (0.2, 0.6, 0.4): unlit, every pixel is that colour sRGB-encoded, the corner included; lit, it is not.
+  for (const bool unlit : {true, false}) {
+    scene::Scene built;
+    scene::Material material;
+    material.base_color = {0.2f, 0.6f, 0.4f, 1.0f};
+    material.unlit = unlit;
+    built.materials = {material};
+    scene::add_instance(built, scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0));
+    scene::add_instance(built, scene::make_quad({-1, -1, 0}, {0, 0, 2}, {2, 0, 0}, 0));
+    scene::update_bounds(built);
+    render::FrameSettings settings = small_settings();
+    Harness h;
+    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings));
+    const auto color = h.renderer.read_color();
+    const auto depth = h.renderer.read_linear_depth();
+    auto srgb = [](float linear) {
+      return static_cast<int>(
+          std::lround(255.0 * (linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055)));
+    };
+    const glm::ivec3 expected(srgb(0.2f), srgb(0.6f), srgb(0.4f));
+    size_t surface = 0, differing = 0;
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x) {
+        if (depth[static_cast<size_t>((kSide - 1 - y) * kSide + x)] <= 0.0f) continue;
+        ++surface;
+        const size_t at = static_cast<size_t>((y * kSide + x) * 4);
+        const glm::ivec3 got(color[at], color[at + 1], color[at + 2]);
+        const glm::ivec3 off = glm::abs(got - expected);
+        if (std::max({off.x, off.y, off.z}) > 1) ++differing;
+      }
+    ASSERT_GT(surface, 1000u);
+    if (unlit)
+      EXPECT_EQ(differing, 0u) << "unlit pixels off their base colour";
+    else
+      EXPECT_GT(differing, surface / 2) << "lit pixels are shaded";
+    EXPECT_EQ(h.renderer.gl_error(), "");
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, Pipeline, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace

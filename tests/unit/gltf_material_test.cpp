@@ -109,6 +109,14 @@ TEST_F(GltfMaterial, ASetThePrimitiveLacksIsSampledAtTheOriginWithAWarning) {
                                                       "reads TEXCOORD_3, which the primitive lacks; it is sampled at (0, 0)"});
 }
 
+TEST_F(GltfMaterial, KhrMaterialsUnlitMarksTheMaterial) {
+  json doc = textured(0);
+  EXPECT_FALSE(load_ok(write(doc)).materials.at(1).unlit);
+  doc["extensionsUsed"] = doc["extensionsRequired"] = {"KHR_materials_unlit"};
+  doc["materials"][0]["extensions"] = {{"KHR_materials_unlit", json::object()}};
+  EXPECT_TRUE(load_ok(write(doc)).materials.at(1).unlit);
+}
+
 TEST_F(GltfMaterial, AlphaModesAndCutoffs) {
   json doc = textured(0);
   scene::Scene loaded = load_ok(write(doc));

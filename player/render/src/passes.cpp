@@ -84,6 +84,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
     if (!depth_only) {
       const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
       gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+      gl::api.Uniform1f(program->lit, material.unlit ? 0.0f : 1.0f);
     }
     if (!depth_only || masked) {
       gl::api.Uniform4fv(program->base_color, 1, glm::value_ptr(material.base_color));

@@ -18,6 +18,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.base_color = gl::uniform(*out.program, "u_base_color");
   out.texture = gl::uniform(*out.program, "u_base_color_texture");
   out.alpha_cutoff = gl::uniform(*out.program, "u_alpha_cutoff");
+  out.lit = gl::uniform(*out.program, "u_lit");
   return true;
 }
 

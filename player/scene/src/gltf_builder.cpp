@@ -24,7 +24,7 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT
 
 // Extensions whose content the player reads; any of them may be listed in extensionsRequired.
 const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression",
-                                                    "KHR_draco_mesh_compression", "KHR_texture_transform"};
+                                                    "KHR_draco_mesh_compression", "KHR_texture_transform", "KHR_materials_unlit"};
 
 // What a scene using an extension the player does not read shows instead.
 std::string shown_instead(const std::string& extension) {
@@ -340,6 +340,7 @@ class Builder {
     const std::string field = "materials[" + std::to_string(index) + "]";
     Material material;
     material.double_sided = source.doubleSided;
+    material.unlit = source.extensions.count("KHR_materials_unlit") > 0;
     if (source.alphaMode == "MASK" || source.alphaMode == "BLEND") {
       material.alpha_mode = source.alphaMode == "MASK" ? AlphaMode::mask : AlphaMode::blend;
       if (!std::isfinite(source.alphaCutoff) || source.alphaCutoff < 0.0)

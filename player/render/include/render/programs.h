@@ -15,7 +15,7 @@ namespace render {
 
 struct RasterProgram {
   const gl::Program* program = nullptr;
-  GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1;
+  GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1, lit = -1;
 };
 
 class Programs {

@@ -41,6 +41,7 @@ struct Material {
   bool double_sided = false;
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;  // mask: fragments whose alpha is below it are not drawn
+  bool unlit = false;         // KHR_materials_unlit: the base colour as it is, neither lit nor occluded
   bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }
 };
 

@@ -38,11 +38,11 @@ const json* find(const json& object, const char* key) {
   return found == object.end() ? nullptr : &*found;
 }
 
-const json& entry(const json& root, const char* array, int index) {
-  static const json empty = json::object();
+// Element `index` of the top-level array `array`, or null when there is none.
+const json* entry(const json& root, const char* array, int index) {
   const json* values = find(root, array);
-  if (!values || !values->is_array() || index < 0 || static_cast<size_t>(index) >= values->size()) return empty;
-  return (*values)[static_cast<size_t>(index)];
+  if (!values || !values->is_array() || index < 0 || static_cast<size_t>(index) >= values->size()) return nullptr;
+  return &(*values)[static_cast<size_t>(index)];
 }
 
 }  // namespace
@@ -107,9 +107,10 @@ std::vector<unsigned char> Document::read_uri(const std::string& uri, const std:
 
 const std::vector<unsigned char>& Document::buffer(int index, const std::string& field) {
   if (auto found = buffers_.find(index); found != buffers_.end()) return found->second;
-  const json& source = entry(root_, "buffers", index);
   const std::string where = field + " -> buffers[" + std::to_string(index) + "]";
-  if (source.empty()) fail(where + ": out of range");
+  const json* found_source = entry(root_, "buffers", index);
+  if (!found_source) fail(where + ": out of range");
+  const json& source = *found_source;
   const size_t byte_length = source.value("byteLength", size_t{0});
   std::vector<unsigned char> bytes;
   if (const json* uri = find(source, "uri"); uri && uri->is_string()) {
@@ -135,8 +136,8 @@ Bytes Document::view_bytes(int index, const std::string& field) {
   if (index < 0 || static_cast<size_t>(index) >= model_.bufferViews.size()) fail(where + ": out of range");
   const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(index)];
   if (auto found = decoded_views_.find(index); found != decoded_views_.end()) return {found->second.data(), found->second.size()};
-  const json& source = entry(root_, "bufferViews", index);
-  if (const json* extensions = find(source, "extensions"))
+  const json* source = entry(root_, "bufferViews", index);
+  if (const json* extensions = source ? find(*source, "extensions") : nullptr)
     if (const json* meshopt = find(*extensions, "EXT_meshopt_compression")) {
       const MeshoptView request = meshopt_view(*meshopt, view.byteLength, view.byteStride, where);
       const std::vector<unsigned char>& data = buffer(request.buffer, where + ".extensions.EXT_meshopt_compression.buffer");
@@ -157,9 +158,10 @@ Bytes Document::view_bytes(int index, const std::string& field) {
 
 const DecodedImage& Document::image(int index, const std::string& field) {
   if (auto found = images_.find(index); found != images_.end()) return found->second;
-  const json& source = entry(root_, "images", index);
   const std::string where = "images[" + std::to_string(index) + "]";
-  if (source.empty()) fail(field + ": image " + std::to_string(index) + " out of range");
+  const json* found_source = entry(root_, "images", index);
+  if (!found_source) fail(field + ": image " + std::to_string(index) + " out of range");
+  const json& source = *found_source;
   DecodedImage decoded;
   std::string problem;
   try {

@@ -80,6 +80,11 @@ int main(int argc, char** argv) {
                    "Camera distance as a multiple of the distance that just fits the scene")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  render_cmd
+      ->add_option("--file-camera", render.file_camera,
+                   "View through the scene's own camera N (glTF's cameras, in the order the scene's nodes are visited) "
+                   "instead of framing it; the aspect is the image's")
+      ->check(CLI::NonNegativeNumber);
   SettingOptions render_settings;
   render_settings.add_to(*render_cmd, render.frame);
   render_cmd->add_option("--platform", render.platform, "GL platform: " + platform::names_text())

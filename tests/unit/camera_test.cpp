@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -99,3 +101,25 @@ TEST(Camera, DistanceFactorMovesTheEyeAlongTheSameDirection) {
 }
 
 }  // namespace
+
+// A file camera looks along its node's -Z with +Y up: its view matrix is the inverse of its node's
+// world transform (rigid), whatever the surface; far reaches past the scene when zfar is absent.
+TEST(Camera, AFileCameraViewsFromItsNode) {
+  scene::FileCamera file;
+  file.world = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(3, -2, 7)), 0.7, glm::normalize(glm::dvec3(1, 2, -0.5)));
+  file.yfov = 0.6;
+  file.znear = 0.05;
+  scene::Bounds bounds;
+  bounds.min = glm::dvec3(-1);
+  bounds.max = glm::dvec3(1);
+  const scene::Camera camera = scene::from_file(file, bounds, 200, 100);
+  const glm::dmat4 expected = glm::inverse(file.world), view = camera.view();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(view[c][r], expected[c][r], 1e-9) << c << "," << r;
+  EXPECT_DOUBLE_EQ(camera.fov_y, 0.6);
+  EXPECT_DOUBLE_EQ(camera.aspect, 2.0);
+  EXPECT_DOUBLE_EQ(camera.near, 0.05);
+  EXPECT_GT(camera.far, glm::length(camera.eye) + bounds.radius());
+  file.zfar = 40.0;
+  EXPECT_DOUBLE_EQ(scene::from_file(file, bounds, 200, 100).far, 40.0);
+}

@@ -117,6 +117,30 @@ TEST_F(GltfMaterial, KhrMaterialsUnlitMarksTheMaterial) {
   EXPECT_TRUE(load_ok(write(doc)).materials.at(1).unlit);
 }
 
+// Cameras are read from the nodes that place them, with their world transforms and checked values.
+TEST_F(GltfMaterial, CamerasComeWithTheirNodesWorldTransform) {
+  json doc = triangle();
+  doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                    {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0}, {"zfar", 10}}}}};
+  doc["nodes"] = {{{"mesh", 0}},
+                  {{"translation", {0, 0, 4}}, {"children", {2}}},
+                  {{"camera", 0}, {"translation", {1, 0, 0}}},
+                  {{"camera", 1}}};
+  doc["scenes"][0]["nodes"] = {0, 1, 3};
+  const scene::Scene loaded = load_ok(write(doc));
+  ASSERT_EQ(loaded.cameras.size(), 2u);
+  EXPECT_TRUE(loaded.cameras[0].perspective);
+  EXPECT_DOUBLE_EQ(loaded.cameras[0].yfov, 0.5);
+  EXPECT_EQ(loaded.cameras[0].zfar, 0.0);
+  EXPECT_EQ(glm::dvec3(loaded.cameras[0].world[3]), glm::dvec3(1, 0, 4));
+  EXPECT_FALSE(loaded.cameras[1].perspective);
+  doc["cameras"][0]["perspective"]["yfov"] = 0;
+  EXPECT_NE(error_of(write(doc)).find("cameras[0].perspective.yfov: 0.000000; expected radians in (0, pi)"), std::string::npos);
+  doc["cameras"][0]["perspective"]["yfov"] = 0.5;
+  doc["cameras"][0]["perspective"]["zfar"] = 0.05;
+  EXPECT_NE(error_of(write(doc)).find("cameras[0].perspective.zfar"), std::string::npos);
+}
+
 TEST_F(GltfMaterial, AlphaModesAndCutoffs) {
   json doc = textured(0);
   scene::Scene loaded = load_ok(write(doc));

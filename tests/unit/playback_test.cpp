@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "playback/playlist.h"
+#include "playback/timeline.h"
 
 namespace fs = std::filesystem;
 using namespace playback;
@@ -83,6 +84,19 @@ TEST(Playlist, ExampleFilePlaysAsWritten) {
   EXPECT_FALSE(it.has_background);
   EXPECT_EQ(it.display, "");
   EXPECT_EQ(it.line, 2);
+}
+
+TEST(Playlist, TheScenesOwnCameraByIndex) {
+  const Playlist pl = parse_ok(
+      "[[item]]\nscene = \"a.glb\"\ncamera = { motion = \"file\", index = 2 }\n"
+      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"file\" }\n");
+  EXPECT_EQ(pl.items.at(0).camera.motion, Motion::file);
+  EXPECT_EQ(pl.items[0].camera.index, 2);
+  EXPECT_EQ(camera_at(pl.items[0].camera, 3.0).file_index, 2);
+  EXPECT_EQ(pl.items.at(1).camera.index, 0);  // the first camera when none is named
+  EXPECT_EQ(camera_at(pl.items[1].camera, 0.0).file_index, 0);
+  CameraPath turntable;
+  EXPECT_EQ(camera_at(turntable, 1.0).file_index, -1);
 }
 
 TEST(Playlist, Defaults) {
@@ -274,13 +288,15 @@ const ErrorCase error_cases[] = {
     // Camera.
     {"CameraNotTable", ITEM "camera = \"spin\"\n", "3:10: item[0].camera: expected a table, got a string"},
     {"UnknownCameraKey", ITEM "camera = { motion = \"still\", speed = 3 }\n",
-     "3:30: item[0].camera.speed: expected one of motion, period, elevation, distance, azimuth, fov, keys, got an unknown key"},
+     "3:30: item[0].camera.speed: expected one of motion, period, elevation, distance, azimuth, fov, keys, index, got an unknown "
+     "key"},
     {"UnknownCameraKeyInSubTable", ITEM "[item.camera]\nmotion = \"still\"\nroll = 5\n",
-     "5:1: item[0].camera.roll: expected one of motion, period, elevation, distance, azimuth, fov, keys, got an unknown key"},
+     "5:1: item[0].camera.roll: expected one of motion, period, elevation, distance, azimuth, fov, keys, index, got an unknown "
+     "key"},
     {"MotionUnknown", ITEM "camera = { motion = \"spin\" }\n",
-     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, got \"spin\""},
+     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"spin\""},
     {"MotionNotString", ITEM "camera = { motion = 1 }\n",
-     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, got an integer"},
+     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got an integer"},
     {"PeriodNegative", ITEM "camera = { period = -20 }\n",
      "3:21: item[0].camera.period: expected seconds per turn > 0 (a negative period is not supported), got -20"},
     {"PeriodZero", ITEM "camera = { period = 0 }\n", "3:21: item[0].camera.period: expected seconds per turn > 0, got 0"},
@@ -319,6 +335,13 @@ const ErrorCase error_cases[] = {
      "5:31: item[0].camera.keys[0].elevation: expected degrees in [-89, 89], got 95"},
     {"KeysWithoutOrbit", ITEM "camera = { keys = [] }\n",
      "3:19: item[0].camera.keys: expected keys only with motion = \"orbit\", got an empty array"},
+    // The scene's own cameras.
+    {"IndexWithoutFile", ITEM "camera = { index = 1 }\n",
+     "3:20: item[0].camera.index: expected index only with motion = \"file\", got 1"},
+    {"IndexNegative", ITEM "camera = { motion = \"file\", index = -1 }\n",
+     "3:37: item[0].camera.index: expected a camera index of the scene, 0 or more, got -1"},
+    {"IndexFraction", ITEM "camera = { motion = \"file\", index = 1.5 }\n",
+     "3:37: item[0].camera.index: expected a camera index of the scene, 0 or more, got 1.5"},
     // Render settings.
     {"AoNotTable", ITEM "ao = 3\n", "3:6: item[0].ao: expected a table of render settings, got an integer"},
     {"AoUnknownKey", ITEM "ao = { estimator = \"horizon\", bogus = 1 }\n",
@@ -334,7 +357,7 @@ const ErrorCase error_cases[] = {
      "3:17: item[0].ao.radius: expected a string, integer, float or boolean, got an array"},
     // Messages stay on one line whatever the strings hold.
     {"ControlCharactersEscaped", "[[item]]\nscene = \"a\\nb\"\ncamera = { motion = \"a\\\"\\tb\" }\n",
-     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, got \"a\\\"\\tb\""},
+     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a\\\"\\tb\""},
     // TOML syntax: toml++'s own words.
     {"SyntaxUnterminatedString", "loop = true\n[[item]]\nscene = \"a.glb\n",
      "3:15: Error while parsing string: unescaped control characters other than TAB (U+0009) are explicitly prohibited"},

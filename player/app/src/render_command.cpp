@@ -119,6 +119,20 @@ scene::Framing framing_of(const playback::Camera& camera) {
   return framing;
 }
 
+scene::Camera camera_for(const playback::Camera& camera, const scene::Bounds& bounds,
+                         const std::vector<scene::FileCamera>& cameras, int width, int height, std::string* note) {
+  if (camera.file_index >= 0) {
+    const size_t index = static_cast<size_t>(camera.file_index);
+    if (index < cameras.size() && cameras[index].perspective) return scene::from_file(cameras[index], bounds, width, height);
+    if (note && index >= cameras.size())
+      *note = "camera " + std::to_string(camera.file_index) + ": the scene has " + std::to_string(cameras.size()) + " camera" +
+              (cameras.size() == 1 ? "" : "s") + "; framed by the player instead";
+    else if (note)
+      *note = "camera " + std::to_string(camera.file_index) + " is orthographic, which the player does not draw; framed instead";
+  }
+  return scene::frame(bounds, framing_of(camera), width, height);
+}
+
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.display.empty()) return run_render_light_field(options, out, err);
   if (!options.modules_dir.empty() || !options.native_output.empty() || options.view_probe) {
@@ -157,9 +171,15 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   path.elevation_deg = options.framing.elevation_deg;
   path.distance = options.framing.distance;
   path.fov_deg = options.framing.fov_y_deg;
+  if (options.file_camera >= 0) {
+    path.motion = playback::Motion::file;
+    path.index = options.file_camera;
+  }
   playback::Timeline timeline(std::move(playlist), 0.0, 0.0);
-  const scene::Camera camera =
-      scene::frame(scene.bounds, framing_of(timeline.at(0.0, 0.0).camera), options.frame.width, options.frame.height);
+  std::string camera_note;
+  const scene::Camera camera = camera_for(timeline.at(0.0, 0.0).camera, scene.bounds, scene.cameras, options.frame.width,
+                                          options.frame.height, &camera_note);
+  if (!camera_note.empty()) err << "warning: " << camera_note << "\n";
 
   const int frames = std::max(1, options.frames);
   std::vector<render::PassTimes> times;

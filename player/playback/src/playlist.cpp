@@ -28,8 +28,8 @@ struct Named {
   std::string_view name;
   E value;
 };
-constexpr std::array<Named<Motion>, 3> motion_names{
-    {{"still", Motion::still}, {"turntable", Motion::turntable}, {"orbit", Motion::orbit}}};
+constexpr std::array<Named<Motion>, 4> motion_names{
+    {{"still", Motion::still}, {"turntable", Motion::turntable}, {"orbit", Motion::orbit}, {"file", Motion::file}}};
 constexpr std::array<Named<Schedule>, 2> schedule_names{
     {{"sequential", Schedule::sequential}, {"wallclock", Schedule::wallclock}}};
 
@@ -326,9 +326,22 @@ bool read_keys(Parser& p, const toml::table& cam, const std::string& prefix, dou
   return true;
 }
 
+// motion = "file": `index` picks the scene's camera (0 when absent); only with that motion.
+bool read_file_camera(Parser& p, const toml::table& t, const std::string& prefix, CameraPath& c) {
+  const toml::node* n = t.get("index");
+  if (!n) return true;
+  const std::string field = prefix + "index";
+  if (c.motion != Motion::file) return p.fail(n->source(), field, "index only with motion = \"file\"", describe(*n));
+  const auto* i = n->as_integer();
+  if (!i || i->get() < 0 || i->get() > 1000000)
+    return p.fail(n->source(), field, "a camera index of the scene, 0 or more", describe(*n));
+  c.index = static_cast<int>(i->get());
+  return true;
+}
+
 bool read_camera(Parser& p, const toml::table& t, const std::string& prefix, double duration, CameraPath& c) {
-  if (!p.known_keys(t, prefix, {"motion", "period", "elevation", "distance", "azimuth", "fov", "keys"})) return false;
-  return p.choice(t, prefix, "motion", motion_names, c.motion) &&
+  if (!p.known_keys(t, prefix, {"motion", "period", "elevation", "distance", "azimuth", "fov", "keys", "index"})) return false;
+  return p.choice(t, prefix, "motion", motion_names, c.motion) && read_file_camera(p, t, prefix, c) &&
          p.number(
              t, prefix, "period", "seconds per turn > 0", [](double v) { return v > 0; }, c.period_s,
              "seconds per turn > 0 (a negative period is not supported)") &&

@@ -74,6 +74,9 @@ Camera camera_at(const CameraPath& path, double t) {
   switch (path.motion) {
     case Motion::still:
       break;
+    case Motion::file:
+      c.file_index = path.index;
+      break;
     case Motion::turntable:
       if (path.period_s > 0 && std::isfinite(t)) c.azimuth_deg += 360.0 * std::fmod(t, path.period_s) / path.period_s;
       break;

@@ -37,4 +37,19 @@ Camera frame(const Bounds& bounds, const Framing& framing, int width, int height
   return camera;
 }
 
+Camera from_file(const FileCamera& file, const Bounds& bounds, int width, int height) {
+  Camera camera;
+  camera.aspect = static_cast<double>(width) / static_cast<double>(height);
+  camera.fov_y = file.yfov;
+  camera.eye = glm::dvec3(file.world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::dvec3 forward = glm::dvec3(file.world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+  const glm::dvec3 up = glm::dvec3(file.world * glm::dvec4(0.0, 1.0, 0.0, 0.0));
+  camera.target = camera.eye + glm::normalize(forward);
+  camera.up = glm::normalize(up);
+  camera.near = file.znear;
+  const double reach = glm::length(bounds.centre() - camera.eye) + bounds.radius();
+  camera.far = file.zfar > 0.0 ? file.zfar : std::max(reach * 1.01, file.znear * 2.0);
+  return camera;
+}
+
 }  // namespace scene

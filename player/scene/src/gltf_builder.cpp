@@ -141,6 +141,7 @@ class Builder {
       const std::string where = "nodes[" + std::to_string(index) + "]";
       const tinygltf::Node& node = model_.nodes[at];
       const glm::dmat4 world = parent * local_transform(node, where);
+      if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
           fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " +
@@ -164,6 +165,43 @@ class Builder {
         enter(children[c], parent, "nodes[" + std::to_string(top.node) + "].children[" + std::to_string(c) + "]");
       }
     }
+  }
+
+  // glTF 2.0, 5.13: perspective with yfov > 0, znear > 0 and zfar absent or beyond znear;
+  // orthographic with non-zero magnifications and zfar beyond znear >= 0.
+  FileCamera file_camera(int index, const glm::dmat4& world, int node) {
+    const std::string field = "cameras[" + std::to_string(index) + "]";
+    if (static_cast<size_t>(index) >= model_.cameras.size())
+      fail("nodes[" + std::to_string(node) + "].camera: " + std::to_string(index) + " out of range (there are " +
+           std::to_string(model_.cameras.size()) + ")");
+    const tinygltf::Camera& source = model_.cameras[static_cast<size_t>(index)];
+    FileCamera camera;
+    camera.world = world;
+    camera.node = node;
+    if (source.type == "perspective") {
+      const tinygltf::PerspectiveCamera& p = source.perspective;
+      if (!std::isfinite(p.yfov) || p.yfov <= 0.0 || p.yfov >= 3.14159)
+        fail(field + ".perspective.yfov: " + std::to_string(p.yfov) + "; expected radians in (0, pi)");
+      if (!std::isfinite(p.znear) || p.znear <= 0.0)
+        fail(field + ".perspective.znear: " + std::to_string(p.znear) + "; expected a distance > 0");
+      if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && p.zfar <= p.znear))
+        fail(field + ".perspective.zfar: " + std::to_string(p.zfar) + "; expected a distance beyond znear, or none");
+      camera.yfov = p.yfov;
+      camera.znear = p.znear;
+      camera.zfar = p.zfar;
+    } else if (source.type == "orthographic") {
+      const tinygltf::OrthographicCamera& o = source.orthographic;
+      if (!std::isfinite(o.xmag) || !std::isfinite(o.ymag) || o.xmag == 0.0 || o.ymag == 0.0)
+        fail(field + ".orthographic: xmag and ymag must be finite and non-zero");
+      if (!std::isfinite(o.znear) || !std::isfinite(o.zfar) || o.znear < 0.0 || o.zfar <= o.znear)
+        fail(field + ".orthographic: expected 0 <= znear < zfar");
+      camera.perspective = false;
+      camera.znear = o.znear;
+      camera.zfar = o.zfar;
+    } else {
+      fail(field + ".type: \"" + source.type + "\"; expected \"perspective\" or \"orthographic\"");
+    }
+    return camera;
   }
 
   // The Scene meshes of glTF mesh `index`, one per triangle primitive, converted once and shared by instances.

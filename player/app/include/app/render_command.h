@@ -19,6 +19,7 @@ struct RenderOptions {
   std::string platform = "auto";
   std::string dump_dir;  // empty: no dump
   int frames = 1;        // frames rendered; times are the median over all but the first
+  int file_camera = -1;  // >= 0: view through the scene's camera of that index (--file-camera)
   // Light field output (--display): a display file; per-view PNGs; a quilt's panel image; the probe.
   std::string display, modules_dir, native_output;
   bool view_probe = false;
@@ -32,6 +33,13 @@ scene::LoadOptions load_options_for(const gl::Caps& caps);
 
 // The framing a playback camera asks for (shared by `render` and `play`).
 scene::Framing framing_of(const playback::Camera& camera);
+
+// The view a playback camera asks for on a `width` x `height` surface: the scene's own camera when
+// it names one (motion = "file") that the scene has and that is perspective, else the framing.
+// `note`, when given, says why a named camera was not used (left empty when it was, or none was
+// named); without it nothing is allocated, so the frame loop may call this every frame.
+scene::Camera camera_for(const playback::Camera& camera, const scene::Bounds& bounds,
+                         const std::vector<scene::FileCamera>& cameras, int width, int height, std::string* note = nullptr);
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);

@@ -84,6 +84,10 @@ void FrameDrawer::prepare(const playback::Cue& cue, const std::string& key, cons
       status.report(key + ": " + error);
     else if (!output_->adjustment().empty())
       status.note(key + ": " + output_->adjustment());
+    std::string camera_note;  // once per configuration: the frames that follow aim without a word
+    const glm::ivec2 view = output_->view_size();
+    camera_for(cue.camera, scene.bounds, scene.cameras, view.x, view.y, &camera_note);
+    if (!camera_note.empty()) status.note(key + ": " + camera_note);
     configured_item_ = cue.item;
     configured_sequence_ = cue.sequence;
     shown_key_ = key;
@@ -92,7 +96,7 @@ void FrameDrawer::prepare(const playback::Cue& cue, const std::string& key, cons
   if (!configured_ok_) gpu_ = nullptr;
   if (gpu_ == nullptr) return;
   const glm::ivec2 size = output_->view_size();
-  output_->aim(scene::frame(scene.bounds, framing_of(cue.camera), size.x, size.y));
+  output_->aim(camera_for(cue.camera, scene.bounds, scene.cameras, size.x, size.y));
 }
 
 void FrameDrawer::draw(float fade) {

@@ -62,6 +62,7 @@ void SceneCache::take(Loader::Result& result, playback::Timeline& timeline) {
   scene.incoming = std::make_unique<render::SceneGpu>();
   scene.incoming->begin(result.scene, caps_);
   scene.incoming_bounds = result.scene->bounds;
+  scene.incoming_cameras = result.scene->cameras;
 }
 
 // A budget per frame keeps an item change or a reload from showing as a hitch.
@@ -83,6 +84,7 @@ bool SceneCache::step_uploads(const std::string& shown) {
     if (scene.gpu) ++swaps_;
     scene.gpu = std::move(scene.incoming);
     scene.bounds = scene.incoming_bounds;
+    scene.cameras = std::move(scene.incoming_cameras);
     scene.display = scene.incoming_display;
     shown_swapped = shown_swapped || key == shown;
   }

@@ -27,6 +27,7 @@ struct CachedScene {
   // A new version uploading in slices; it replaces `gpu` once whole.
   std::unique_ptr<render::SceneGpu> incoming;
   scene::Bounds incoming_bounds;
+  std::vector<scene::FileCamera> cameras, incoming_cameras;  // the scene's own, for motion = "file"
   // The light field display the item is shown on (null: the platform's own 2D surface).
   std::shared_ptr<const lightfield::Display> display, incoming_display;
   std::string error;                  // failed to load: the item is skipped

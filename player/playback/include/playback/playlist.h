@@ -15,7 +15,7 @@
 
 namespace playback {
 
-enum class Motion { still, turntable, orbit };
+enum class Motion { still, turntable, orbit, file };
 enum class Schedule { sequential, wallclock };
 
 std::string_view name(Motion m);
@@ -36,6 +36,7 @@ struct CameraPath {
   double distance = 1.0;       // multiple of the distance that fits the scene in view
   double fov_deg = 45;         // vertical field of view, in (1, 170)
   std::vector<OrbitKey> keys;  // orbit only: >= 2, t strictly increasing from 0
+  int index = 0;               // file only: which of the scene's cameras (glTF's, in node order)
 };
 
 // A render setting from an item's `ao` table: key as written in the playlist (the command line's

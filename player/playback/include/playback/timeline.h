@@ -39,6 +39,7 @@ namespace playback {
 
 struct Camera {  // what scene::Framing takes
   double azimuth_deg = 30, elevation_deg = 20, distance = 1, fov_deg = 45;
+  int file_index = -1;  // >= 0: the scene's own camera of that index instead (motion = "file")
 };
 
 // What the playlist says should show at a time: the item, how far into it, the camera and the fade.

@@ -22,4 +22,8 @@ struct Camera {
 
 Camera frame(const Bounds& bounds, const Framing& framing, int width, int height);
 
+// The view of a perspective file camera on a `width` x `height` surface (its aspect, not the
+// file's: the surface is what is shown). Without a zfar, far reaches past the scene's bounds.
+Camera from_file(const FileCamera& file, const Bounds& bounds, int width, int height);
+
 }  // namespace scene

@@ -50,6 +50,17 @@ struct Instance {
   glm::dmat4 world{1.0};  // double: scenes may sit far from the origin
 };
 
+// A camera of the file (glTF's cameras, placed by the node that names them): it looks along its
+// node's -Z with +Y up. Orthographic cameras are kept so an item can be told why it is not used.
+struct FileCamera {
+  glm::dmat4 world{1.0};
+  bool perspective = true;
+  double yfov = 0.8;  // radians
+  double znear = 0.01;
+  double zfar = 0.0;  // 0: infinite (fitted to the scene when drawn)
+  int node = -1;      // for messages
+};
+
 struct Bounds {
   glm::dvec3 min{0.0}, max{0.0};
   glm::dvec3 centre() const { return (min + max) * 0.5; }
@@ -62,6 +73,7 @@ struct Scene {
   std::vector<Material> materials;  // never empty: index 0 is the default material
   std::vector<Texture> textures;
   std::vector<Instance> instances;
+  std::vector<FileCamera> cameras;  // in the order the shown scene's nodes are visited
   Bounds bounds;
   size_t triangle_count() const;
 };

@@ -217,6 +217,11 @@ TEST_F(GltfGeometry, MeshoptRequestsAreCheckedBeforeDecoding) {
       {"an unknown mode", [](json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["mode"] = "STRIPS"; },
        "bufferViews[1].extensions.EXT_meshopt_compression.mode: \"STRIPS\"; expected \"ATTRIBUTES\", \"TRIANGLES\" or "
        "\"INDICES\""},
+      {"a mode that is not a string", [](json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["mode"] = 3; },
+       "bufferViews[1].extensions.EXT_meshopt_compression.mode: 3; expected"},
+      {"a filter that is not a string",
+       [](json& d) { d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["filter"] = json::array(); },
+       "bufferViews[0].extensions.EXT_meshopt_compression.filter: []; expected"},
       {"a stride the index codec cannot have",
        [](json& d) { d["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 3; },
        "byteStride: 3; expected 2 or 4 for TRIANGLES"},
@@ -323,6 +328,19 @@ TEST_F(GltfGeometry, DracoDataThatDoesNotMatchItsPrimitiveIsRefusedByName) {
       {"an attribute the primitive does not list",
        [](json& d) { d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["NORMAL"] = 0; },
        draco + ".attributes.NORMAL: the primitive has no attribute NORMAL"},
+      {"an uncompressed POSITION with fewer vertices than the Draco mesh has points",
+       [](json& d) {
+         d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"] = json::object();
+         d["accessors"][0]["count"] = 3;
+       },
+       "meshes[0].primitives[0].attributes.POSITION: 3 vertices, but the Draco mesh has"},
+      {"ids and indices written as floats",
+       [](json& d) {
+         auto& compressed = d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"];
+         compressed["bufferView"] = 0.0;
+         compressed["attributes"]["POSITION"] = compressed["attributes"]["POSITION"].get<double>();
+       },
+       ""},
       {"points instead of triangles", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 4.0; }, ""},
       {"a strip", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 5; },
        "meshes[0].primitives[0].mode: 5; KHR_draco_mesh_compression holds a triangle list, expected mode 4"},
@@ -352,9 +370,46 @@ TEST_F(GltfGeometry, IntegersWrittenAsFloatsAreIntegers) {
   doc["nodes"][0]["mesh"] = 0.0;
   doc["accessors"][0]["count"] = 3.0;
   EXPECT_EQ(load_ok(write(doc)).triangle_count(), 1u);
+  // Inside extensions as well: every non-negative integer check reads 3.0 as 3.
+  json compressed = meshopt_document(curve_mesh(20));
+  compressed["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 12.0;
+  compressed["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["buffer"] = 0.0;
+  EXPECT_EQ(load_ok(write(compressed, "scene/meshopt.gltf")).triangle_count(), 18u);
   doc["nodes"][0]["mesh"] = 0.5;
   const std::string error = error_of(write(doc));
   EXPECT_NE(error.find("nodes[0].mesh: 0.5 is out of range; expected an index into meshes"), std::string::npos) << error;
+}
+
+// A few bytes of JSON can ask for gigabytes (a count on an accessor without a buffer view, a
+// compressed view's size); what a scene decodes in all is bounded and checked before allocating.
+TEST_F(GltfGeometry, WhatAFileDecodesInAllIsBoundedBeforeAllocating) {
+  json doc = triangle();
+  doc["accessors"][0] = {{"componentType", 5126}, {"count", 1 << 28}, {"type", "VEC3"}};  // 3 GiB of zeros
+  doc["meshes"][0]["primitives"][0].erase("indices");
+  EXPECT_NE(error_of(write(doc))
+                .find("meshes[0].primitives[0].attributes.POSITION (accessors[0]): decoding it would bring "
+                      "the scene to 3221225472 bytes of decoded data; the limit is 2147483648 bytes"),
+            std::string::npos);
+
+  // Each accessor within the budget, the two together beyond it: the second is refused.
+  const PlainMesh mesh = curve_mesh(200);
+  const fs::path path = write(triangle(mesh.positions, mesh.indices));
+  scene::LoadOptions options;
+  options.decoded_budget_bytes = 200 * 12 + 100;
+  scene::Scene out;
+  scene::LoadReport report;
+  EXPECT_FALSE(scene::load_gltf(path, out, report, options));
+  EXPECT_NE(report.error.find("meshes[0].primitives[0].indices (accessors[1]): decoding it would bring the scene to"),
+            std::string::npos)
+      << report.error;
+  options.decoded_budget_bytes = 200 * 12 + 198 * 3 * 4;
+  EXPECT_TRUE(scene::load_gltf(path, out, report, options)) << report.error;
+
+  // Decompressed views count too.
+  options.decoded_budget_bytes = 1000;
+  EXPECT_FALSE(scene::load_gltf(write(meshopt_document(mesh), "scene/meshopt.gltf"), out, report, options));
+  EXPECT_NE(report.error.find("extensions.EXT_meshopt_compression: decoding it would bring the scene to"), std::string::npos)
+      << report.error;
 }
 
 TEST_F(GltfGeometry, BuffersNothingReadsAreNeverOpened) {

@@ -85,6 +85,8 @@ TEST_F(GltfMaterial, TheTransformsTexCoordReplacesTheTextureInfos) {
   doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
       {"KHR_texture_transform", {{"offset", {1, 2}}, {"texCoord", 0}}}};
   expect_uvs(uvs_of(doc), {{1, 2}, {2, 2}, {1, 3}});
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"]["texCoord"] = 0.0;
+  expect_uvs(uvs_of(doc), {{1, 2}, {2, 2}, {1, 3}});
 }
 
 TEST_F(GltfMaterial, AMalformedTransformIsRefusedByField) {
@@ -134,6 +136,13 @@ TEST_F(GltfMaterial, CamerasComeWithTheirNodesWorldTransform) {
   EXPECT_EQ(loaded.cameras[0].zfar, 0.0);
   EXPECT_EQ(glm::dvec3(loaded.cameras[0].world[3]), glm::dvec3(1, 0, 4));
   EXPECT_FALSE(loaded.cameras[1].perspective);
+  EXPECT_EQ(loaded.cameras[0].unplaced, "");
+  // A node that scales its camera to nothing places no view: kept, but marked for the note.
+  doc["nodes"][2]["scale"] = {1, 0, 1};
+  EXPECT_EQ(load_ok(write(doc)).cameras[0].unplaced, "its node's transform scales its view direction or its up to nothing");
+  doc["nodes"][2]["scale"] = {1, 1, 1e-200};
+  EXPECT_NE(load_ok(write(doc)).cameras[0].unplaced, "");
+  doc["nodes"][2].erase("scale");
   doc["cameras"][0]["perspective"]["yfov"] = 0;
   EXPECT_NE(error_of(write(doc)).find("cameras[0].perspective.yfov: 0.000000; expected radians in (0, pi)"), std::string::npos);
   doc["cameras"][0]["perspective"]["yfov"] = 0.5;

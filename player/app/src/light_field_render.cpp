@@ -1,5 +1,6 @@
 #include "light_field_render.h"
 
+#include "app/render_command.h"
 #include "dump.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -113,7 +114,9 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
     return 1;
   }
   render::LightFieldRenderer renderer;
-  const scene::Camera camera = scene::frame(scene.bounds, options.framing, display.quilt.view_width, display.quilt.view_height);
+  std::string camera_note;
+  const scene::Camera camera = render_camera(options, scene, display.quilt.view_width, display.quilt.view_height, &camera_note);
+  if (!camera_note.empty()) err << "warning: " << camera_note << "\n";
   if (!renderer.init(*session, error) || !renderer.upload(scene, error) ||
       !renderer.configure(display, options.frame, camera, error)) {
     err << "error: " << error << "\n";

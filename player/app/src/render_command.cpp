@@ -123,14 +123,36 @@ scene::Camera camera_for(const playback::Camera& camera, const scene::Bounds& bo
                          const std::vector<scene::FileCamera>& cameras, int width, int height, std::string* note) {
   if (camera.file_index >= 0) {
     const size_t index = static_cast<size_t>(camera.file_index);
-    if (index < cameras.size() && cameras[index].perspective) return scene::from_file(cameras[index], bounds, width, height);
-    if (note && index >= cameras.size())
-      *note = "camera " + std::to_string(camera.file_index) + ": the scene has " + std::to_string(cameras.size()) + " camera" +
-              (cameras.size() == 1 ? "" : "s") + "; framed by the player instead";
-    else if (note)
-      *note = "camera " + std::to_string(camera.file_index) + " is orthographic, which the player does not draw; framed instead";
+    if (index < cameras.size() && cameras[index].perspective && cameras[index].unplaced.empty())
+      return scene::from_file(cameras[index], bounds, width, height);
+    if (!note) return scene::frame(bounds, framing_of(camera), width, height);
+    const std::string name = "camera " + std::to_string(camera.file_index);
+    if (index >= cameras.size())
+      *note = name + ": the scene has " + std::to_string(cameras.size()) + " camera" + (cameras.size() == 1 ? "" : "s") +
+              "; framed by the player instead";
+    else if (!cameras[index].perspective)
+      *note = name + " is orthographic, which the player does not draw; framed instead";
+    else
+      *note = name + " (node " + std::to_string(cameras[index].node) + "): " + cameras[index].unplaced + "; framed instead";
   }
   return scene::frame(bounds, framing_of(camera), width, height);
+}
+
+scene::Camera render_camera(const RenderOptions& options, const scene::Scene& scene, int width, int height, std::string* note) {
+  // A one-item playback with a still camera: the same timeline says what `play` renders.
+  playback::Playlist playlist = playback::playlist_from_scenes({options.scene}, 1.0, 1.0);
+  playback::CameraPath& path = playlist.items.front().camera;
+  path.motion = playback::Motion::still;
+  path.azimuth_deg = options.framing.azimuth_deg;
+  path.elevation_deg = options.framing.elevation_deg;
+  path.distance = options.framing.distance;
+  path.fov_deg = options.framing.fov_y_deg;
+  if (options.file_camera >= 0) {
+    path.motion = playback::Motion::file;
+    path.index = options.file_camera;
+  }
+  playback::Timeline timeline(std::move(playlist), 0.0, 0.0);
+  return camera_for(timeline.at(0.0, 0.0).camera, scene.bounds, scene.cameras, width, height, note);
 }
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
@@ -163,22 +185,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     err << "error: " << error << "\n";
     return 1;
   }
-  // A one-item playback with a still camera: the same timeline says what `play` renders.
-  playback::Playlist playlist = playback::playlist_from_scenes({options.scene}, 1.0, 1.0);
-  playback::CameraPath& path = playlist.items.front().camera;
-  path.motion = playback::Motion::still;
-  path.azimuth_deg = options.framing.azimuth_deg;
-  path.elevation_deg = options.framing.elevation_deg;
-  path.distance = options.framing.distance;
-  path.fov_deg = options.framing.fov_y_deg;
-  if (options.file_camera >= 0) {
-    path.motion = playback::Motion::file;
-    path.index = options.file_camera;
-  }
-  playback::Timeline timeline(std::move(playlist), 0.0, 0.0);
   std::string camera_note;
-  const scene::Camera camera = camera_for(timeline.at(0.0, 0.0).camera, scene.bounds, scene.cameras, options.frame.width,
-                                          options.frame.height, &camera_note);
+  const scene::Camera camera = render_camera(options, scene, options.frame.width, options.frame.height, &camera_note);
   if (!camera_note.empty()) err << "warning: " << camera_note << "\n";
 
   const int frames = std::max(1, options.frames);

@@ -132,6 +132,8 @@ void read_accessor(Document& document, int index, const std::string& field, cons
   if (accessor.bufferView >= 0)  // glTF 2.0, 3.6.2.3: without a buffer view, all zeros
     dense = span_view(document, accessor.bufferView, accessor.byteOffset, accessor.count, accessor.componentType, components,
                       accessor.normalized, true, where);
+  // What the caller keeps: one float (or index) per component.
+  document.charge(accessor.count * static_cast<size_t>(components) * sizeof(float), where);
   begin(accessor.count);
   double values[16];
   for (size_t i = 0; i < dense.count; ++i) {

@@ -178,6 +178,15 @@ class Builder {
     FileCamera camera;
     camera.world = world;
     camera.node = node;
+    {
+      const glm::dvec3 eye(world[3]), forward(world * glm::dvec4(0, 0, -1, 0)), up(world * glm::dvec4(0, 1, 0, 0));
+      const auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+      if (!finite(eye) || !finite(forward) || !finite(up))
+        camera.unplaced = "its node's transform is not finite";
+      else if (glm::length(forward) < 1e-12 || glm::length(up) < 1e-12 ||
+               glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) < 1e-6)
+        camera.unplaced = "its node's transform scales its view direction or its up to nothing";
+    }
     if (source.type == "perspective") {
       const tinygltf::PerspectiveCamera& p = source.perspective;
       if (!std::isfinite(p.yfov) || p.yfov <= 0.0 || p.yfov >= 3.14159)
@@ -266,6 +275,11 @@ class Builder {
     const auto positions =
         attribute<3>(decoded, "POSITION", position_at->second, where + ".attributes.POSITION", position_formats(quantized_));
     const size_t vertex_count = positions.size();
+    // decode_draco checks its indices against its own points, so the vertices must be those points
+    // even when POSITION itself was not compressed.
+    if (decoded && decoded->points != vertex_count)
+      fail(where + ".attributes.POSITION: " + std::to_string(vertex_count) + " vertices, but the Draco mesh has " +
+           std::to_string(decoded->points) + " points; expected the same count");
 
     // glTF 2.0, 3.7.2.1: all attribute accessors of a primitive have the same count; checked for the
     // attributes the player does not read as well, as Khronos' validator does.

@@ -145,6 +145,7 @@ Bytes Document::view_bytes(int index, const std::string& field) {
         fail(where + ".extensions.EXT_meshopt_compression: bytes " + std::to_string(request.byte_offset) + ".." +
              std::to_string(request.byte_offset + request.byte_length) + " lie beyond its buffer of " +
              std::to_string(data.size()) + " bytes");
+      charge(view.byteLength, where + ".extensions.EXT_meshopt_compression");
       std::vector<unsigned char> decoded = decode_meshopt(request, data.data() + request.byte_offset, view.byteLength, where);
       auto& stored = decoded_views_[index] = std::move(decoded);
       return {stored.data(), stored.size()};
@@ -154,6 +155,13 @@ Bytes Document::view_bytes(int index, const std::string& field) {
     fail(where + ": bytes " + std::to_string(view.byteOffset) + ".." + std::to_string(view.byteOffset + view.byteLength) +
          " lie beyond buffers[" + std::to_string(view.buffer) + "] of " + std::to_string(data.size()) + " bytes");
   return {data.data() + view.byteOffset, view.byteLength};
+}
+
+void Document::charge(size_t bytes, const std::string& field) {
+  if (bytes > options_.decoded_budget_bytes - decoded_bytes_)
+    fail(field + ": decoding it would bring the scene to " + std::to_string(decoded_bytes_ + bytes) +
+         " bytes of decoded data; the limit is " + std::to_string(options_.decoded_budget_bytes) + " bytes");
+  decoded_bytes_ += bytes;
 }
 
 const DecodedImage& Document::image(int index, const std::string& field) {
@@ -175,7 +183,10 @@ const DecodedImage& Document::image(int index, const std::string& field) {
     } else {
       fail(where + ": expected a uri or a bufferView");
     }
-    decoded = decode_image(bytes.data, bytes.size, options_, problem);
+    LoadOptions within_budget = options_;
+    within_budget.image_budget_bytes = std::min(options_.image_budget_bytes, options_.decoded_budget_bytes - decoded_bytes_);
+    decoded = decode_image(bytes.data, bytes.size, within_budget, problem);
+    if (problem.empty()) charge(decoded.rgba.size(), where);
   } catch (const LoadError& e) {
     // A missing or unreadable image file does not stop the scene; the texture is drawn white.
     problem = e.message;

@@ -47,6 +47,9 @@ class Document {
   Bytes view_bytes(int index, const std::string& field);
   // Image `index` decoded to 8-bit RGBA, or empty with a warning given once.
   const DecodedImage& image(int index, const std::string& field);
+  // Counts `bytes` the loader is about to decode against LoadOptions::decoded_budget_bytes, and
+  // refuses (LoadError naming `field`) before anything is allocated when the total would exceed it.
+  void charge(size_t bytes, const std::string& field);
 
  private:
   const std::vector<unsigned char>& buffer(int index, const std::string& field);
@@ -61,6 +64,7 @@ class Document {
   std::map<int, std::vector<unsigned char>> buffers_;
   std::map<int, std::vector<unsigned char>> decoded_views_;
   std::map<int, DecodedImage> images_;
+  size_t decoded_bytes_ = 0;
 };
 
 }  // namespace scene::gltf

@@ -36,7 +36,8 @@ DecodedImage decode_image(const unsigned char* bytes, size_t size, const LoadOpt
     const uint64_t decoded = width * height * 4;
     if (decoded > options.image_budget_bytes)
       return dimensions + " needs " + std::to_string(decoded >> 20) + " MiB decoded; expected at most " +
-             std::to_string(options.image_budget_bytes >> 20) + " MiB per image";
+             std::to_string(options.image_budget_bytes >> 20) +
+             " MiB for this image (the per-image limit, or what is left of the scene's)";
     return {};
   };
   auto finish = [&](int width, int height, std::vector<unsigned char> pixels) {

@@ -89,6 +89,13 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     out = gltf::build_scene(document, report, fs::path(file).filename().string());
   } catch (const gltf::LoadError& e) {
     return refuse(e.message);
+  } catch (const std::bad_alloc&) {
+    return refuse("the scene needs more memory than there is; nothing of it is shown");
+  } catch (const std::exception& e) {
+    // Every expected problem is a LoadError naming its field; this is the backstop that keeps an
+    // overlooked one (a JSON value of an unexpected type, a library's own exception) from
+    // stopping the player.
+    return refuse(std::string("cannot be read: ") + e.what());
   }
   return true;
 }

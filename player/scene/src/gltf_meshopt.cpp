@@ -39,7 +39,12 @@ MeshoptView meshopt_view(const json& extension, size_t view_length, size_t view_
   view.byte_length = unsigned_field(extension, "byteLength", at, true);
   view.byte_stride = unsigned_field(extension, "byteStride", at, true);
   view.count = unsigned_field(extension, "count", at, true);
-  const std::string mode = extension.value("mode", std::string());
+  auto text = [&](const char* key, const char* fallback) {
+    const auto found = extension.find(key);
+    if (found == extension.end()) return std::string(fallback);
+    return found->is_string() ? found->get<std::string>() : std::string();  // not a string: no name matches
+  };
+  const std::string mode = text("mode", "");
   if (mode == "ATTRIBUTES")
     view.mode = MeshoptMode::attributes;
   else if (mode == "TRIANGLES")
@@ -49,7 +54,7 @@ MeshoptView meshopt_view(const json& extension, size_t view_length, size_t view_
   else
     fail(at + ".mode: " + (extension.contains("mode") ? extension["mode"].dump() : std::string("missing")) +
          "; expected \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\"");
-  const std::string filter = extension.value("filter", std::string("NONE"));
+  const std::string filter = text("filter", "NONE");
   if (filter == "NONE")
     view.filter = MeshoptFilter::none;
   else if (filter == "OCTAHEDRAL")

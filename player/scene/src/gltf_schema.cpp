@@ -68,13 +68,13 @@ class SchemaCheck {
       if (const auto sparse = accessor.find("sparse"); sparse != accessor.end() && problem_.empty()) {
         const std::string where = at + ".sparse";
         if (!sparse->is_object()) return fail_once(where + ": expected an object");
-        integer(*sparse, "count", where, 1, kMaxSafeInteger, true);
+        integer(*sparse, "count", where, 1, INT32_MAX, true);
         for (const char* part : {"indices", "values"}) {
           const std::string place = where + "." + part;
           const auto found = sparse->find(part);
           if (found == sparse->end() || !found->is_object()) return fail_once(place + ": expected an object");
           index(*found, "bufferView", place, "bufferViews", true);
-          integer(*found, "byteOffset", place, 0, kMaxSafeInteger, false);
+          integer(*found, "byteOffset", place, 0, INT32_MAX, false);
           if (std::string(part) == "indices") one_of(*found, "componentType", place, {5121, 5123, 5125}, true);
         }
       }
@@ -118,7 +118,7 @@ class SchemaCheck {
         const std::string place = where + "." + key;
         if (!info->is_object()) return fail_once(place + ": expected an object");
         index(*info, "index", place, "textures", true);
-        integer(*info, "texCoord", place, 0, kMaxSafeInteger, false);
+        integer(*info, "texCoord", place, 0, INT32_MAX, false);
       };
       if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end()) {
         if (!pbr->is_object()) return fail_once(at + ".pbrMetallicRoughness: expected an object");
@@ -291,7 +291,13 @@ void integral_floats_to_integers(json& value) {
   if (value.is_number_float()) {
     const double number = value.get<double>();
     // 2^53: beyond it a double no longer holds every integer, and glTF's integers stop there too.
-    if (std::trunc(number) == number && std::abs(number) <= 9007199254740991.0) value = static_cast<int64_t>(number);
+    // Non-negative integers become unsigned, as the parser reads "3", so "3.0" passes every check "3" does.
+    if (std::trunc(number) == number && std::abs(number) <= 9007199254740991.0) {
+      if (number >= 0)
+        value = static_cast<uint64_t>(number);
+      else
+        value = static_cast<int64_t>(number);
+    }
   } else if (value.is_structured()) {
     for (json& element : value) integral_floats_to_integers(element);
   }

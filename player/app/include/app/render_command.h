@@ -40,6 +40,10 @@ scene::Framing framing_of(const playback::Camera& camera);
 // named); without it nothing is allocated, so the frame loop may call this every frame.
 scene::Camera camera_for(const playback::Camera& camera, const scene::Bounds& bounds,
                          const std::vector<scene::FileCamera>& cameras, int width, int height, std::string* note = nullptr);
+// The still camera of `player render` (its framing options, or --file-camera), for a view of
+// width x height; `note` says why a file camera was not used.
+scene::Camera render_camera(const RenderOptions& options, const scene::Scene& scene, int width, int height,
+                            std::string* note = nullptr);
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
 int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);

@@ -25,6 +25,10 @@ struct LoadOptions {
   // Decoded RGBA bytes one image may take; a file that declares more is drawn white rather than
   // exhausting a board's memory (a 65535 x 65535 PNG header is 100 bytes and asks for 16 GiB).
   size_t image_budget_bytes = size_t{256} << 20;
+  // Bytes one scene may decode in all: accessors' elements as the player holds them, decompressed
+  // buffer views and images. An accessor without a buffer view or a compressed view is a few bytes
+  // of JSON that can ask for gigabytes; such a file is refused naming the field that went over.
+  size_t decoded_budget_bytes = size_t{2} << 30;
 };
 
 // Deepest JSON nesting accepted (objects and arrays together). Real glTF files nest about ten deep;

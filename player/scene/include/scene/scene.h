@@ -59,6 +59,9 @@ struct FileCamera {
   double znear = 0.01;
   double zfar = 0.0;  // 0: infinite (fitted to the scene when drawn)
   int node = -1;      // for messages
+  // Non-empty when the node's transform places no usable view (a zero scale, a non-finite number,
+  // a view direction along its up): why, for the note that says the scene is framed instead.
+  std::string unplaced;
 };
 
 struct Bounds {

@@ -1,4 +1,4 @@
-// G-buffer and depth prepass vertex stage. Positions arrive camera-relative: the model-view matrix
+// G-buffer and depth prepass vertex stage (HAS_NORMAL_TEXTURE: with tangents; HAS_UV1: a second UV mapping). Positions arrive camera-relative: the model-view matrix
 // is composed in double precision on the CPU, so large world coordinates lose nothing here.
 // LIGHTFIELD_MODULES: u_model_view takes the model to physical space, the module's world-to-image
 // transform (lightfield.glsl) places the vertex, and the world position goes to the positions texture.
@@ -11,6 +11,14 @@ out vec3 v_world_position;
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
+#ifdef HAS_NORMAL_TEXTURE
+layout(location = 3) in vec4 a_tangent;
+out vec4 v_view_tangent;
+#endif
+#ifdef HAS_UV1
+layout(location = 4) in vec2 a_uv1;
+out vec2 v_uv1;
+#endif
 
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
@@ -26,6 +34,13 @@ void main() {
   vec4 view = u_model_view * vec4(a_position, 1.0);
   v_view_normal = u_normal_matrix * a_normal;
   v_uv = a_uv;
+#ifdef HAS_NORMAL_TEXTURE
+  // A tangent lies in the surface: it turns with the model-view, not with the normal matrix.
+  v_view_tangent = vec4(mat3(u_model_view) * a_tangent.xyz, a_tangent.w);
+#endif
+#ifdef HAS_UV1
+  v_uv1 = a_uv1;
+#endif
 #ifdef LIGHTFIELD_MODULES
   // Physical space looks like view space from the observer line: +z towards the viewer, so the
   // normal needs no change and the linear depth is the distance from the observer line.

@@ -1,20 +1,31 @@
-// Present: upsamples the AO where it was computed at reduced resolution, shades (ambient + one
-// directional light in view space, times 1 - AO) or shows a debug output, and writes the result
-// into the platform's framebuffer. ENCODE_SRGB: the framebuffer stores what it is given, so the
-// shader encodes; otherwise the framebuffer is sRGB and encodes on write. OUTPUT (OUTPUT_COLOR by
-// default) is a compile-time choice: llvmpipe runs every side of a branch on a uniform, and the
-// debug outputs' sRGB decoding made the shaded image cost half as much again (21 against 15 ms at
-// 1024x768).
+// Present: upsamples the AO where it was computed at reduced resolution, shades or shows a debug
+// output, and writes the result into the platform's framebuffer. Shading is glTF's
+// metallic-roughness (pbr.glsl) under the environment (prefiltered cube map, spherical-harmonic
+// irradiance, split-sum table) and the key light, plus emission. The SSAO term occludes only the
+// environment light: its diffuse part by the visibility, its specular part by the specular
+// occlusion derived from it; the key light stands for a light with a shadow of its own that
+// screen-space AO does not know. A material's occlusion texture joins the SSAO visibility by min(),
+// not a product: a baked occlusion map and SSAO see the same creases, and a product would darken
+// them twice (Filament and Frostbite combine them alike).
+// ENCODE_SRGB: the framebuffer stores what it is given, so the shader encodes; otherwise the
+// framebuffer is sRGB and encodes on write. OUTPUT (OUTPUT_COLOR by default) is a compile-time
+// choice: llvmpipe runs every side of a branch on a uniform, and the debug outputs' sRGB decoding
+// made the shaded image cost half as much again (21 against 15 ms at 1024x768).
 #include "common.glsl"
 #include "shared_layout.glsl"
 #include "upsample.glsl"
 #include "gbuffer_normals.glsl"
+#include "material.glsl"
+#include "pbr.glsl"
 
 layout(std140, binding = BINDING_COMPOSITE_PARAMS) uniform CompositeBlock { CompositeParams composite; };
 uniform highp sampler2D u_albedo;
 uniform highp sampler2D u_normal;
 uniform highp sampler2D u_linear_depth;
 uniform highp sampler2D u_ao;  // r = AO (at the AO resolution), g = depth / far
+uniform highp usampler2D u_material;
+uniform highp samplerCube u_specular;  // the environment prefiltered per roughness, a level each
+uniform highp sampler2D u_brdf_lut;    // the split-sum table: (A, B) at (n.v, roughness)
 
 #ifndef OUTPUT
 #define OUTPUT OUTPUT_COLOR
@@ -74,13 +85,27 @@ void main() {
   fragment = data(vec3(1.0 - clamp(t, 0.0, 1.0)) * fade);
 #else
   vec4 surface = texelFetch(u_albedo, pixel, 0);  // a = 0: an unlit material (KHR_materials_unlit)
-  float ambient = composite.ambient;
-  float diffuse = max(dot(normal, composite.light_direction.xyz), 0.0);
+  if (surface.a < 0.5) {
+    fragment = shaded(surface.rgb * fade);
+    return;
+  }
+  highp uvec2 packed_material = texelFetch(u_material, pixel, 0).xy;
+  vec4 material = unpackUnorm4x8(packed_material.x);  // roughness, metallic, occlusion
+  vec3 view_position = view_position_at(pixel, depth, composite.unproject, ivec2(composite.full_width, composite.full_height));
+  SurfacePoint s = surface_point(surface.rgb, material.y, material.x, normal, -normalize(view_position));
+  mat3 to_world = mat3(composite.view_to_world);
+  vec3 irradiance = sh_irradiance(composite.irradiance, to_world * normal) * composite.environment_intensity;
+  vec3 prefiltered = textureLod(u_specular, to_world * reflect(-s.v, normal), s.roughness * composite.specular_max_level).rgb *
+                     composite.environment_intensity;
+  vec3 environment_diffuse, environment_specular;
+  environment_light(s, texture(u_brdf_lut, vec2(s.nv, s.roughness)).rg, irradiance, prefiltered, environment_diffuse,
+                    environment_specular);
   // --ao-strength darkens or lightens the shaded image only: the AO view and every read-back show the
   // AO as computed, which is what accuracy is measured on.
-  float visibility = pow(max(1.0 - ao, 0.0), composite.ao_strength);
-  // A select, not a mix: lit pixels keep exactly the value they had before unlit materials existed.
-  float light = surface.a > 0.5 ? (ambient + (1.0 - ambient) * diffuse) * visibility : 1.0;
-  fragment = shaded(surface.rgb * light * fade);
+  float visibility = min(pow(max(1.0 - ao, 0.0), composite.ao_strength), material.z);
+  vec3 color = environment_diffuse * visibility + environment_specular * specular_occlusion(s.nv, visibility, s.roughness);
+  color += punctual_light(s, composite.light_direction.xyz, composite.light_color.rgb);
+  color += unpack_rgb9e5(packed_material.y);
+  fragment = shaded(color * fade);
 #endif
 }

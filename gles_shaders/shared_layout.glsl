@@ -96,9 +96,12 @@ struct UpsampleParams {
 };
 
 struct CompositeParams {
-  vec4 light_direction;    // xyz: view space, normalised
+  vec4 light_direction;    // xyz: view space, normalised: the key light, towards it
+  vec4 light_color;        // rgb: the key light's irradiance (linear; 0: none)
   vec4 background;         // rgb: linear RGB of empty pixels
-  vec4 unproject;          // as SsaoParams.unproject, for the upsampling's plane test
+  vec4 unproject;          // as SsaoParams.unproject, for the upsampling's plane test and the view vector
+  mat4 view_to_world;      // the environment is in world space
+  vec4 irradiance[9];      // rgb: the environment's irradiance / pi as spherical harmonics (pbr.glsl)
   int apply_ao;            // 0/1
   int ao_shift;            // AO resolution shift (0 full: no upsampling, 1 half)
   int viewport_x;          // the view's lower-left pixel in the framebuffer
@@ -111,10 +114,10 @@ struct CompositeParams {
   float far_plane;
   float inverse_far;       // 1 / far_plane
   float fade;              // brightness multiplier (transitions between playlist items)
-  float ambient;           // the ambient light's share
-  float ao_strength;       // the power on 1 - AO in the shaded image (1: as computed)
-  float plane_tolerance;   // of upsample.glsl (0: depth alone)
-  float unused_0;
+  float specular_max_level;     // the prefiltered cube map's last level (roughness 1)
+  float ao_strength;            // the power on 1 - AO in the shaded image (1: as computed)
+  float plane_tolerance;        // of upsample.glsl (0: depth alone)
+  float environment_intensity;  // scales the environment's light
 };
 
 // Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by

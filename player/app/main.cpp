@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--dump", render.dump_dir,
                          "Write float EXRs (raw and blurred AO, world position, normal, linear depth) and camera.json to DIR "
                          "(with --display: each view's in DIR/module-K/ or DIR/view-K/, with view.json)");
+  render_cmd->add_option(
+      "--environment", render.environment,
+      "What lights the scenes: an equirectangular HDR or EXR (prefiltered at load), or builtin:studio (the default)");
   render_cmd->add_option("--display", render.display,
                          "Light field display file (TOML, see board/displays): render every optical module or quilt view; "
                          "-o writes the montage of the modules or the quilt, --size is ignored");
@@ -132,6 +135,10 @@ int main(int argc, char** argv) {
   auto* play_cmd =
       cli.add_subcommand("play", "Play a playlist (TOML) or scenes in a loop, kiosk style, until stopped (the default command)");
   play_cmd->add_option("inputs", play.inputs, "One playlist (.toml), or scenes (.gltf, .glb, builtin:NAME); none: builtin:demo");
+  play_cmd->add_option(
+      "--environment", play.environment,
+      "What lights the scenes: an equirectangular HDR or EXR (prefiltered at load), or builtin:studio (the default)"
+      " for items whose playlist entry names no environment");
   play_cmd->add_option("--content", play.content_root,
                        "Folder the playlist's files must stay inside (default: the playlist's folder)");
   play_cmd->add_option("--duration", play.duration_s, "Scenes named on the command line: seconds each")

@@ -107,8 +107,144 @@ TEST_F(GltfMaterial, ASetThePrimitiveLacksIsSampledAtTheOriginWithAWarning) {
   scene::Scene out;
   scene::LoadReport report;
   ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
-  EXPECT_EQ(report.warnings, std::vector<std::string>{"meshes[0].primitives[0].attributes: the material's base colour texture "
-                                                      "reads TEXCOORD_3, which the primitive lacks; it is sampled at (0, 0)"});
+  EXPECT_EQ(report.warnings, std::vector<std::string>{"meshes[0].primitives[0].attributes: the material's textures read "
+                                                      "TEXCOORD_3, which the primitive lacks; they are sampled at (0, 0)"});
+}
+
+// glTF's metallic-roughness material: factors, the four other textures in their colour spaces,
+// each on its own mapping where it differs from the base colour's.
+TEST_F(GltfMaterial, MetallicRoughnessNormalOcclusionAndEmissiveAreRead) {
+  json doc = textured(0);
+  // Without pbrMetallicRoughness's factors: glTF's defaults, metallic and rough.
+  scene::Material material = load_ok(write(doc)).materials.at(1);
+  EXPECT_EQ(material.metallic, 1.0f);
+  EXPECT_EQ(material.roughness, 1.0f);
+  EXPECT_FALSE(material.normal.present());
+  EXPECT_EQ(material.emissive, glm::vec3(0.0f));
+
+  json& m = doc["materials"][0];
+  m["pbrMetallicRoughness"]["metallicFactor"] = 0.25;
+  m["pbrMetallicRoughness"]["roughnessFactor"] = 0.5;
+  m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+  m["normalTexture"] = {{"index", 0}, {"scale", 0.75}};
+  m["occlusionTexture"] = {{"index", 0}, {"texCoord", 1}, {"strength", 0.5}};
+  m["emissiveTexture"] = {{"index", 0}};
+  m["emissiveFactor"] = {1.0, 0.5, 0.25};
+  scene::Scene loaded = load_ok(write(doc));
+  material = loaded.materials.at(1);
+  EXPECT_EQ(material.metallic, 0.25f);
+  EXPECT_EQ(material.roughness, 0.5f);
+  EXPECT_EQ(material.normal_scale, 0.75f);
+  EXPECT_EQ(material.occlusion_strength, 0.5f);
+  EXPECT_EQ(material.emissive, glm::vec3(1.0f, 0.5f, 0.25f));
+  ASSERT_TRUE(material.metallic_roughness.present() && material.normal.present() && material.occlusion.present() &&
+              material.emissive_texture.present());
+  // The one image read as colour (base colour, emission) and as data (the rest): two textures.
+  EXPECT_EQ(material.emissive_texture.texture, material.base_color_texture);
+  EXPECT_EQ(material.normal.texture, material.metallic_roughness.texture);
+  EXPECT_NE(material.normal.texture, material.base_color_texture);
+  EXPECT_TRUE(loaded.textures.at(static_cast<size_t>(material.base_color_texture)).srgb);
+  EXPECT_FALSE(loaded.textures.at(static_cast<size_t>(material.normal.texture)).srgb);
+  // Occlusion reads TEXCOORD_1, the others the base colour's set: the mesh carries both.
+  EXPECT_TRUE(material.occlusion.second_uv);
+  EXPECT_FALSE(material.normal.second_uv || material.metallic_roughness.second_uv || material.emissive_texture.second_uv);
+  const scene::Mesh& mesh = loaded.meshes.at(0);
+  ASSERT_EQ(mesh.uv1.size(), mesh.vertices.size());
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    EXPECT_EQ(mesh.vertices[i].uv, kSet0[i]);
+    EXPECT_EQ(mesh.uv1[i], kSet1[i]);
+  }
+  // A normal map brings tangents: generated here (the file has none), in the surface, unit, signed.
+  ASSERT_EQ(mesh.tangents.size(), mesh.vertices.size());
+  for (const glm::vec4& t : mesh.tangents) {
+    EXPECT_NEAR(glm::length(glm::vec3(t)), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(glm::vec3(t), glm::vec3(0, 0, 1)), 0.0f, 1e-5f);
+    EXPECT_EQ(std::abs(t.w), 1.0f);
+  }
+}
+
+TEST_F(GltfMaterial, EmissiveStrengthScalesTheEmission) {
+  json doc = textured(0);
+  doc["materials"][0]["emissiveFactor"] = {1.0, 0.5, 0.0};
+  doc["materials"][0]["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}};
+  doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  EXPECT_EQ(out.materials.at(1).emissive, glm::vec3(4.0f, 2.0f, 0.0f));
+  EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+  doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = -1;
+  EXPECT_NE(error_of(write(doc))
+                .find("materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: expected a "
+                      "number from 0 to 1e6"),
+            std::string::npos);
+}
+
+// A third distinct mapping in one material is more than the mesh carries: sampled with the first.
+TEST_F(GltfMaterial, AThirdMappingIsSampledWithTheFirstWithAWarning) {
+  json doc = textured(0);
+  doc["materials"][0]["occlusionTexture"] = {{"index", 0}, {"texCoord", 1}};
+  doc["materials"][0]["emissiveTexture"] = {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.0}}}}}}};
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  EXPECT_FALSE(out.materials.at(1).emissive_texture.second_uv);
+  EXPECT_EQ(report.warnings, std::vector<std::string>{"materials[0].emissiveTexture: a third texture coordinate mapping in one "
+                                                      "material; sampled with the first"});
+}
+
+// The file's TANGENT is used when the material has a normal map and the mesh its normals.
+TEST_F(GltfMaterial, TheFilesTangentsAreKeptNormalised) {
+  json doc = textured(0);
+  std::vector<unsigned char> normals_and_tangents;
+  for (int i = 0; i < 3; ++i) append<float>(normals_and_tangents, {0, 0, 1});
+  for (int i = 0; i < 3; ++i) append<float>(normals_and_tangents, {0, 2, 0, -1});
+  doc["buffers"].push_back({{"byteLength", normals_and_tangents.size()},
+                            {"uri", "data:application/octet-stream;base64," + base64(normals_and_tangents)}});
+  doc["bufferViews"].push_back({{"buffer", 2}, {"byteLength", 36}});
+  doc["bufferViews"].push_back({{"buffer", 2}, {"byteOffset", 36}, {"byteLength", 48}});
+  doc["accessors"].push_back({{"bufferView", 4}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  doc["accessors"].push_back({{"bufferView", 5}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 4;
+  doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = 5;
+  EXPECT_TRUE(load_ok(write(doc)).meshes.at(0).tangents.empty());  // no normal map: not read
+  doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  const scene::Mesh mesh = load_ok(write(doc)).meshes.at(0);
+  ASSERT_EQ(mesh.tangents.size(), 3u);
+  for (const glm::vec4& t : mesh.tangents) EXPECT_EQ(t, glm::vec4(0, 1, 0, -1));
+}
+
+// Generated tangents follow the UVs: on a quad whose u runs along +x and v along -y, the tangent is
+// +x and the bitangent (w * cross(n, t)) is -y.
+TEST(Tangents, FollowTheTextureDirections) {
+  scene::Mesh mesh;
+  mesh.vertices = {{{0, 0, 0}, {0, 0, 1}, {0, 1}},
+                   {{1, 0, 0}, {0, 0, 1}, {1, 1}},
+                   {{1, 1, 0}, {0, 0, 1}, {1, 0}},
+                   {{0, 1, 0}, {0, 0, 1}, {0, 0}}};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  scene::generate_tangents(mesh, false);
+  ASSERT_EQ(mesh.tangents.size(), 4u);
+  for (const glm::vec4& t : mesh.tangents) {
+    EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+    const glm::vec3 bitangent = t.w * glm::cross(glm::vec3(0, 0, 1), glm::vec3(t));
+    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  }
+  // Mirrored in u: the tangent turns round, the bitangent stays.
+  for (scene::Vertex& v : mesh.vertices) v.uv.x = 1.0f - v.uv.x;
+  scene::generate_tangents(mesh, false);
+  for (const glm::vec4& t : mesh.tangents) {
+    EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
+    const glm::vec3 bitangent = t.w * glm::cross(glm::vec3(0, 0, 1), glm::vec3(t));
+    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  }
+  // No UV area at all: still a unit vector in the surface, never NaN.
+  for (scene::Vertex& v : mesh.vertices) v.uv = glm::vec2(0.5f);
+  scene::generate_tangents(mesh, false);
+  for (const glm::vec4& t : mesh.tangents) {
+    EXPECT_NEAR(glm::length(glm::vec3(t)), 1.0f, 1e-6f);
+    EXPECT_NEAR(t.z, 0.0f, 1e-6f);
+  }
 }
 
 TEST_F(GltfMaterial, KhrMaterialsUnlitMarksTheMaterial) {

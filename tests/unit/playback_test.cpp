@@ -252,7 +252,7 @@ const ErrorCase error_cases[] = {
     {"BuiltinWithoutName", "[[item]]\nscene = \"builtin:\"\n",
      "2:9: item[0].scene: expected a name after builtin:, got \"builtin:\""},
     {"UnknownItemKey", ITEM "sound = \"x.ogg\"\n",
-     "3:1: item[0].sound: expected one of scene, duration, camera, ao, background, display, got an unknown key"},
+     "3:1: item[0].sound: expected one of scene, duration, camera, ao, background, display, environment, got an unknown key"},
     {"DurationZero", ITEM "duration = 0\n", "3:12: item[0].duration: expected a number of seconds > 0, got 0"},
     {"DurationString", ITEM "duration = \"8\"\n", "3:12: item[0].duration: expected a number of seconds > 0, got a string"},
     {"DurationInfinite", ITEM "duration = inf\n", "3:12: item[0].duration: expected a number of seconds > 0, got inf"},

@@ -109,7 +109,8 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   if (!session) return 1;
   const gl::Caps& caps = session->caps();
   scene::Scene scene;
-  if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {
+  if (!scene::load(options.scene, scene, error, err, load_options_for(caps)) ||
+      !scene::load_environment_spec(options.environment, scene.environment, error)) {
     err << "error: " << error << "\n";
     return 1;
   }

@@ -63,6 +63,23 @@ std::size_t Loader::busy() const {
   return jobs_.size() + running_;
 }
 
+bool Loader::environment(const std::string& spec, std::shared_ptr<const scene::Environment>& out, std::string& error) {
+  // Prepared once per file version: items sharing an environment share its memory and its
+  // prefiltering, and an edited file is prepared anew.
+  std::error_code ec;
+  const auto stamp = std::filesystem::last_write_time(spec, ec);
+  const std::string version = ec ? spec
+                                 : spec + "@" + std::to_string(stamp.time_since_epoch().count()) + "/" +
+                                       std::to_string(std::filesystem::file_size(spec, ec));
+  if (const auto found = environments_.find(version); found != environments_.end()) {
+    out = found->second;
+    return true;
+  }
+  if (!scene::load_environment_spec(spec, out, error)) return false;
+  if (!ec) environments_[version] = out;
+  return true;
+}
+
 void Loader::run() {
   for (;;) {
     Result job;
@@ -83,7 +100,8 @@ void Loader::run() {
       auto display = std::make_shared<lightfield::Display>();
       if (!display_path.empty() && !lightfield::load_display(display_path, *display, job.error)) {
         // the error names the display file and the field
-      } else if (scene::load(scene_of(job.path), *scene, job.error, log, scene_options)) {
+      } else if (scene::load(scene_of(job.path), *scene, job.error, log, scene_options) &&
+                 environment(environment_of(job.path), scene->environment, job.error)) {
         if (!display_path.empty()) {
           render::SubdivisionReport report;
           scene = std::make_shared<scene::Scene>(render::prepare_for_display(*scene, *display, report));

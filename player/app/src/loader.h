@@ -4,12 +4,16 @@
 #include "base/unique_fd.h"
 #include "lightfield/display_file.h"
 #include "playback/playlist.h"
+#include "scene/environment.h"
 #include "scene/gltf_loader.h"
+#include "scene/load.h"
 #include "scene/scene.h"
 
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -18,17 +22,31 @@
 
 namespace app {
 
-// The loader's key for a playlist item: its scene, and its display when it has one.
-inline std::string load_key(const playback::Item& item) {
-  return item.display.empty() ? item.scene : item.scene + "\n" + item.display;
+// The loader's key for a playlist item: its scene, then its display and its environment when it
+// has them (`fallback_environment` when the item names none), one per line.
+inline std::string load_key(const playback::Item& item, const std::string& fallback_environment = {}) {
+  const std::string& environment = item.environment.empty() ? fallback_environment : item.environment;
+  if (item.display.empty() && environment.empty()) return item.scene;
+  return item.scene + "\n" + item.display + (environment.empty() ? "" : "\n" + environment);
 }
-// The scene spec and the display path of a key.
+// The scene spec, the display path and the environment of a key (empty where it has none).
+inline std::string key_part(const std::string& key, int part) {
+  size_t begin = 0;
+  for (int i = 0; i < part; ++i) {
+    begin = key.find('\n', begin);
+    if (begin == std::string::npos) return {};
+    ++begin;
+  }
+  return key.substr(begin, key.find('\n', begin) - begin);
+}
 inline std::string scene_of(const std::string& key) {
-  return key.substr(0, key.find('\n'));
+  return key_part(key, 0);
 }
 inline std::string display_of(const std::string& key) {
-  const size_t at = key.find('\n');
-  return at == std::string::npos ? std::string() : key.substr(at + 1);
+  return key_part(key, 1);
+}
+inline std::string environment_of(const std::string& key) {
+  return key_part(key, 2);
 }
 
 class Loader {
@@ -51,8 +69,9 @@ class Loader {
   int fd() const { return wake_.get(); }
   // What scenes are loaded with from now on (the GL context's largest texture, once it exists).
   void set_scene_options(const scene::LoadOptions& options);
-  // `key`: a scene spec, or "SPEC\nDISPLAY" for a scene shown on a light field display: the display
-  // file is read too, and for optical modules the scene's long edges are split for it.
+  // `key`: a scene spec, or "SPEC\nDISPLAY[\nENVIRONMENT]" (load_key): a display file is read too,
+  // and for optical modules the scene's long edges are split for it; an environment is prepared
+  // (once per file version) and given to the scene.
   void load_scene(const std::string& key);
   void load_playlist(const std::string& path);
   // Non-blocking: the oldest finished job, if any.
@@ -65,6 +84,9 @@ class Loader {
 
   playback::ParseOptions playlist_options_;
   scene::LoadOptions scene_options_;  // guarded by mutex_
+  // The loader thread's own: environments prepared so far, by path and file version.
+  std::map<std::string, std::shared_ptr<const scene::Environment>> environments_;
+  bool environment(const std::string& spec, std::shared_ptr<const scene::Environment>& out, std::string& error);
   base::UniqueFd wake_;
   mutable std::mutex mutex_;
   std::condition_variable work_;

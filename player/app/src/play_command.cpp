@@ -105,7 +105,10 @@ bool load_what_to_play(const PlayOptions& options, const playback::ParseOptions&
       err << "error: " << input << ": a playlist plays on its own (give one playlist, or scenes)\n";
       return false;
     }
-  playlist = std::make_shared<playback::Playlist>(playback::playlist_from_scenes(inputs, options.duration_s, options.period_s));
+  auto from_scenes =
+      std::make_shared<playback::Playlist>(playback::playlist_from_scenes(inputs, options.duration_s, options.period_s));
+  for (playback::Item& item : from_scenes->items) item.environment = parse_options.default_environment;
+  playlist = std::move(from_scenes);
   return true;
 }
 
@@ -154,6 +157,10 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   playback::ParseOptions parse_options;
   parse_options.content_root = options.content_root;
   parse_options.validate_setting = render::validate_setting;
+  if (!options.environment.empty() && options.environment.rfind("builtin:", 0) != 0)
+    parse_options.default_environment = fs::absolute(options.environment).lexically_normal().string();
+  else
+    parse_options.default_environment = options.environment;
   Loader loader(parse_options);
   std::string playlist_path;
   std::shared_ptr<const playback::Playlist> playlist;

@@ -174,7 +174,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   // Loaded with the context's texture limit known, so a texture this GPU cannot hold is drawn white.
   const auto load_start = std::chrono::steady_clock::now();
   scene::Scene scene;
-  if (!scene::load(options.scene, scene, error, err, load_options_for(caps))) {
+  if (!scene::load(options.scene, scene, error, err, load_options_for(caps)) ||
+      !scene::load_environment_spec(options.environment, scene.environment, error)) {
     err << "error: " << error << "\n";
     return 1;
   }

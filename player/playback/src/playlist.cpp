@@ -391,7 +391,7 @@ bool read_settings(Parser& p, const toml::table& t, const std::string& prefix, c
 bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const toml::table& t, std::size_t index, Item& item) {
   const std::string prefix = "item[" + std::to_string(index) + "].";
   item.line = static_cast<int>(t.source().begin.line);
-  if (!p.known_keys(t, prefix, {"scene", "duration", "camera", "ao", "background", "display"})) return false;
+  if (!p.known_keys(t, prefix, {"scene", "duration", "camera", "ao", "background", "display", "environment"})) return false;
   const toml::node* scene = t.get("scene");
   if (!scene) return p.fail(t.source(), prefix + "scene", "a path or builtin:NAME", "nothing");
   if (!read_path(p, paths, *scene, prefix + "scene", true, item.scene)) return false;
@@ -413,6 +413,12 @@ bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const
   }
   if (const toml::node* d = t.get("display")) {
     if (!read_path(p, paths, *d, prefix + "display", false, item.display)) return false;
+  }
+  item.environment = options.default_environment;
+  if (const toml::node* e = t.get("environment")) {
+    if (!read_path(p, paths, *e, prefix + "environment", true, item.environment)) return false;
+    if (item.environment.rfind("builtin:", 0) == 0 && item.environment != "builtin:studio")
+      return p.fail(e->source(), prefix + "environment", "a path or builtin:studio", describe(*e));
   }
   return true;
 }

@@ -95,6 +95,14 @@ scene::Scene subdivide_for_modules(const scene::Scene& input, const lightfield::
       for (auto& [edge, index] : splits[m]) {
         index = static_cast<uint32_t>(mesh.vertices.size());
         mesh.vertices.push_back(midpoint(mesh.vertices[edge.first], mesh.vertices[edge.second]));
+        // The optional streams stay as long as the vertices (scene::Mesh).
+        if (!mesh.tangents.empty()) {
+          const glm::vec4 a = mesh.tangents[edge.first], b = mesh.tangents[edge.second];
+          const glm::vec3 sum = glm::vec3(a) + glm::vec3(b);
+          const float length = glm::length(sum);
+          mesh.tangents.push_back(length > 1e-12f ? glm::vec4(sum / length, a.w) : a);
+        }
+        if (!mesh.uv1.empty()) mesh.uv1.push_back((mesh.uv1[edge.first] + mesh.uv1[edge.second]) * 0.5f);
       }
       std::vector<uint32_t> indices;
       indices.reserve(mesh.indices.size() * 2);

@@ -60,7 +60,9 @@ bool LightFieldOutput::configure(const FrameSettings& frame_settings, const Scen
   // For the same reason there is no history to accumulate from: the previous frame of these targets
   // is another view's.
   settings.temporal = false;
-  if (!targets_.configure(programs_, caps, settings, scene.radius(), false, error, modules)) return false;
+  if (!targets_.configure(programs_, caps, settings, scene.radius(), false, error, modules) ||
+      !prepare_material_programs(programs_, scene, settings, modules, error))
+    return false;
   if (!programs_.build_interleave(error)) return false;  // also the copy present() uses
   background_ = settings.background;
   view_size_ = {settings.width, settings.height};

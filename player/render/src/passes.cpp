@@ -49,32 +49,33 @@ void PassContext::finish_pass(Pass pass) const {
 
 namespace {
 
+void bind_material_texture(int unit, const SceneGpu& scene, const scene::TextureSlot& slot) {
+  if (!slot.present()) return;
+  gl::api.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+  gl::api.BindTexture(GL_TEXTURE_2D, scene.textures()[static_cast<size_t>(slot.texture)].id());
+}
+
 void draw_scene(const PassContext& context, bool depth_only) {
   const Programs& programs = context.programs;
   const SceneGpu& scene = context.scene;
   const bool untextured_variant = context.targets.settings().untextured_variant;
   const bool modules = context.view.module.has_value();
   const RasterProgram& depth_program = modules ? programs.module_depth_only : programs.depth_only;
-  const RasterProgram& textured_program = modules ? programs.module_gbuffer_textured : programs.gbuffer_textured;
-  const RasterProgram& plain_program = modules ? programs.module_gbuffer_plain : programs.gbuffer_plain;
-  const RasterProgram& masked_program = modules ? programs.module_gbuffer_masked : programs.gbuffer_masked;
   const RasterProgram& masked_depth_program = modules ? programs.module_depth_masked : programs.depth_masked;
   if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, context.targets.module_ubo.id());
   const glm::mat4 projection(context.view.projection);
   const RasterProgram* bound = nullptr;
   for (const SceneGpu::Draw& draw : scene.draws()) {
     const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
-    const bool textured = material.base_color_texture >= 0;
     const bool masked = material.alpha_tested();
-    const bool fetches = textured || !untextured_variant || masked;
-    const RasterProgram* program = depth_only ? (masked ? &masked_depth_program : &depth_program)
-                                   : masked   ? &masked_program
-                                   : fetches  ? &textured_program
-                                              : &plain_program;
+    const unsigned bits = material_features(material, untextured_variant);
+    // Every variant a scene's materials need was compiled when the view was configured for it.
+    const RasterProgram* program =
+        depth_only ? (masked ? &masked_depth_program : &depth_program) : programs.gbuffer(bits, modules);
+    if (program == nullptr) continue;
     if (program != bound) {
       gl::api.UseProgram(program->program->id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
-      if (program->texture >= 0) gl::api.Uniform1i(program->texture, 0);
       bound = program;
     }
     // Composed in double, then rounded: positions reach the GPU relative to the camera.
@@ -85,14 +86,22 @@ void draw_scene(const PassContext& context, bool depth_only) {
       const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
       gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
       gl::api.Uniform1f(program->lit, material.unlit ? 0.0f : 1.0f);
+      const glm::vec4 factors(material.metallic, material.roughness, material.normal_scale, material.occlusion_strength);
+      gl::api.Uniform4fv(program->material, 1, glm::value_ptr(factors));
+      gl::api.Uniform3fv(program->emissive, 1, glm::value_ptr(material.emissive));
+      bind_material_texture(unit_metallic_roughness, scene, material.metallic_roughness);
+      bind_material_texture(unit_normal, scene, material.normal);
+      bind_material_texture(unit_occlusion, scene, material.occlusion);
+      bind_material_texture(unit_emissive, scene, material.emissive_texture);
     }
     if (!depth_only || masked) {
       gl::api.Uniform4fv(program->base_color, 1, glm::value_ptr(material.base_color));
       if (masked) gl::api.Uniform1f(program->alpha_cutoff, material.alpha_cutoff);
-      if (fetches) {
-        gl::api.ActiveTexture(GL_TEXTURE0);
-        gl::api.BindTexture(GL_TEXTURE_2D, textured ? scene.textures()[static_cast<size_t>(material.base_color_texture)].id()
-                                                    : programs.white.id());
+      if (bits & features::base_color_texture) {
+        gl::api.ActiveTexture(GL_TEXTURE0 + unit_base_color);
+        gl::api.BindTexture(GL_TEXTURE_2D, material.base_color_texture >= 0
+                                               ? scene.textures()[static_cast<size_t>(material.base_color_texture)].id()
+                                               : programs.white.id());
       }
     }
     if (material.double_sided)
@@ -104,6 +113,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
     gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   }
   gl::api.BindVertexArray(0);
+  gl::api.ActiveTexture(GL_TEXTURE0);
 }
 
 void begin_raster(const PassContext& context) {
@@ -118,7 +128,12 @@ void begin_raster(const PassContext& context) {
   gl::api.ClearBufferfv(GL_COLOR, 0, zero);
   gl::api.ClearBufferfv(GL_COLOR, 1, zero);
   gl::api.ClearBufferfv(GL_COLOR, 2, zero);  // linear depth 0 marks background
-  if (context.targets.modules()) gl::api.ClearBufferfv(GL_COLOR, 3, zero);
+  const bool material = context.targets.material_attached();
+  if (material) {
+    const GLuint cleared[4] = {ViewTargets::kMaterialClearX, 0, 0, 0};
+    gl::api.ClearBufferuiv(GL_COLOR, 3, cleared);
+  }
+  if (context.targets.modules()) gl::api.ClearBufferfv(GL_COLOR, material ? 4 : 3, zero);
   gl::api.DepthMask(GL_TRUE);
   gl::api.ClearBufferfv(GL_DEPTH, 0, &one);
 }
@@ -145,6 +160,13 @@ void accumulate(const PassContext& context, bool moved) {
 }
 
 }  // namespace
+
+bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
+                               std::string& error) {
+  for (const scene::Material& material : scene.materials())
+    if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant), modules, error)) return false;
+  return true;
+}
 
 void depth_prepass(const PassContext& context) {
   begin_raster(context);
@@ -277,7 +299,8 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   ViewTargets& targets = context.targets;
   const FrameSettings& settings = targets.settings();
   const View& view = context.view;
-  const shared_layout::CompositeParams composite = pack_composite_params(targets, view, {target.x, target.y}, fade);
+  const shared_layout::CompositeParams composite =
+      pack_composite_params(targets, view, {target.x, target.y}, fade, context.scene.environment());
   detail::update_uniform_buffer(targets.composite_ubo, &composite, sizeof composite);
   targets.last_inverse_far = composite.inverse_far;
 
@@ -291,6 +314,10 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   bind_texture(1, targets.normal);
   bind_texture(2, targets.linear_depth);
   bind_texture(3, targets.ao_result());
+  bind_texture(4, targets.material);
+  gl::api.ActiveTexture(GL_TEXTURE5);
+  gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, context.scene.environment().specular.id());
+  bind_texture(6, context.programs.brdf_lut);
   gl::api.BindVertexArray(context.programs.empty_vertex_array.id());
   gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
   gl::api.BindVertexArray(0);

@@ -2,11 +2,34 @@
 
 #include "gl/program.h"
 #include "gl_util.h"
+#include "scene/environment.h"
+
+#include <vector>
 
 namespace render {
 namespace {
 
 const std::string kMasked = "#define HAS_BASECOLOR_TEXTURE 1\n#define ALPHA_MASK 1\n";
+
+std::string gbuffer_defines(unsigned bits) {
+  std::string defines;
+  auto define = [&](unsigned bit, const char* name) {
+    if (bits & bit) defines += std::string("#define ") + name + " 1\n";
+  };
+  define(features::base_color_texture, "HAS_BASECOLOR_TEXTURE");
+  define(features::alpha_mask, "ALPHA_MASK");
+  define(features::metallic_roughness_texture, "HAS_METALLIC_ROUGHNESS_TEXTURE");
+  define(features::normal_texture, "HAS_NORMAL_TEXTURE");
+  define(features::occlusion_texture, "HAS_OCCLUSION_TEXTURE");
+  define(features::emissive_texture, "HAS_EMISSIVE_TEXTURE");
+  define(features::metallic_roughness_uv1, "METALLIC_ROUGHNESS_UV1");
+  define(features::normal_uv1, "NORMAL_UV1");
+  define(features::occlusion_uv1, "OCCLUSION_UV1");
+  define(features::emissive_uv1, "EMISSIVE_UV1");
+  if (bits & (features::metallic_roughness_uv1 | features::normal_uv1 | features::occlusion_uv1 | features::emissive_uv1))
+    defines += "#define HAS_UV1 1\n";
+  return defines;
+}
 
 bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragment, const std::string& defines,
                   std::string& error) {
@@ -19,6 +42,16 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.texture = gl::uniform(*out.program, "u_base_color_texture");
   out.alpha_cutoff = gl::uniform(*out.program, "u_alpha_cutoff");
   out.lit = gl::uniform(*out.program, "u_lit");
+  out.material = gl::uniform(*out.program, "u_material");
+  out.emissive = gl::uniform(*out.program, "u_emissive");
+  gl::api.UseProgram(out.program->id());
+  const std::pair<const char*, int> samplers[] = {{"u_base_color_texture", unit_base_color},
+                                                  {"u_metallic_roughness_texture", unit_metallic_roughness},
+                                                  {"u_normal_texture", unit_normal},
+                                                  {"u_occlusion_texture", unit_occlusion},
+                                                  {"u_emissive_texture", unit_emissive}};
+  for (const auto& [name, unit] : samplers)
+    if (const GLint location = gl::uniform(*out.program, name); location >= 0) gl::api.Uniform1i(location, unit);
   return true;
 }
 
@@ -43,10 +76,10 @@ const gl::Program* build_compute(gl::ProgramCache& cache, const char* file, cons
 bool Programs::build(gl::Session& session, std::string& error) {
   cache_ = &session.programs();
   gl::ProgramCache& cache = *cache_;
-  if (!build_raster(cache, gbuffer_plain, "gbuffer.frag", "", error) ||
-      !build_raster(cache, gbuffer_textured, "gbuffer.frag", "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+  // The variants every scene of the built-in kind needs; others are compiled when a scene asks.
+  if (!prepare_gbuffer(0, false, error) || !prepare_gbuffer(features::base_color_texture, false, error) ||
       !build_raster(cache, depth_only, "depth_only.frag", "", error) ||
-      !build_raster(cache, gbuffer_masked, "gbuffer.frag", kMasked, error) ||
+      !prepare_gbuffer(features::base_color_texture | features::alpha_mask, false, error) ||
       !build_raster(cache, depth_masked, "depth_only.frag", kMasked, error))
     return false;
   if (!(depth_chain = build_compute(cache, "depth_chain.comp", "", {"u_linear_depth"}, error)) ||
@@ -72,6 +105,54 @@ bool Programs::build(gl::Session& session, std::string& error) {
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl::api.BindTexture(GL_TEXTURE_2D, 0);
+
+  // The split-sum table: small, and the same for every scene, so made once per context.
+  constexpr int kLutSize = 32;
+  static const std::vector<glm::vec2> lut = scene::split_sum_lut(kLutSize, 512);
+  std::vector<float> texels;
+  texels.reserve(lut.size() * 2);
+  for (const glm::vec2& entry : lut) texels.insert(texels.end(), {entry.x, entry.y});
+  brdf_lut = gl::make_texture();
+  gl::api.BindTexture(GL_TEXTURE_2D, brdf_lut.id());
+  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, kLutSize, kLutSize);
+  gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kLutSize, kLutSize, GL_RG, GL_FLOAT, texels.data());
+  // 32-bit float textures filter only with OES_texture_float_linear; the table is smooth enough
+  // that the nearest entry of 32 is within 0.01 of the interpolated one, so nearest is kept portable.
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::api.BindTexture(GL_TEXTURE_2D, 0);
+  return true;
+}
+
+unsigned material_features(const scene::Material& material, bool untextured_variant) {
+  unsigned bits = 0;
+  if (material.base_color_texture >= 0 || !untextured_variant || material.alpha_tested()) bits |= features::base_color_texture;
+  if (material.alpha_tested()) bits |= features::alpha_mask;
+  auto slot = [&](const scene::TextureSlot& texture, unsigned bit, unsigned uv1) {
+    if (!texture.present()) return;
+    bits |= bit;
+    if (texture.second_uv) bits |= uv1;
+  };
+  slot(material.metallic_roughness, features::metallic_roughness_texture, features::metallic_roughness_uv1);
+  slot(material.normal, features::normal_texture, features::normal_uv1);
+  slot(material.occlusion, features::occlusion_texture, features::occlusion_uv1);
+  slot(material.emissive_texture, features::emissive_texture, features::emissive_uv1);
+  return bits;
+}
+
+bool Programs::prepare_gbuffer(unsigned feature_bits, bool modules, std::string& error) {
+  RasterProgram& program = gbuffer_[modules ? 1 : 0][feature_bits];
+  if (program.program != nullptr) return true;
+  std::string defines = gbuffer_defines(feature_bits);
+  if (modules)
+    defines += std::string("#define LIGHTFIELD_MODULES 1\n") + (modules_without_material ? "#define NO_MATERIAL_TARGET 1\n" : "");
+  if (!build_raster(*cache_, program, "gbuffer.frag", defines, error)) {
+    program = RasterProgram{};
+    return false;
+  }
+  gl::api.UseProgram(0);
   return true;
 }
 
@@ -80,7 +161,9 @@ const gl::Program* Programs::present(Picture output, bool srgb, std::string& err
   if (program == nullptr) {
     const std::string defines =
         "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" + (srgb ? "" : "#define ENCODE_SRGB 1\n");
-    program = build_fullscreen(*cache_, "present.frag", defines, {"u_albedo", "u_normal", "u_linear_depth", "u_ao"}, error);
+    program =
+        build_fullscreen(*cache_, "present.frag", defines,
+                         {"u_albedo", "u_normal", "u_linear_depth", "u_ao", "u_material", "u_specular", "u_brdf_lut"}, error);
     gl::api.UseProgram(0);
   }
   return program;
@@ -131,14 +214,16 @@ bool Programs::build_interleave(std::string& error) {
 }
 
 bool Programs::build_module_programs(std::string& error) {
-  if (module_gbuffer_plain.program != nullptr) return true;
+  if (module_depth_only.program != nullptr) return true;
+  GLint draw_buffers = 0;
+  gl::api.GetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+  modules_without_material = draw_buffers < 5;
   const std::string modules = "#define LIGHTFIELD_MODULES 1\n";
-  if (!build_raster(*cache_, module_gbuffer_plain, "gbuffer.frag", modules, error) ||
-      !build_raster(*cache_, module_gbuffer_textured, "gbuffer.frag", modules + "#define HAS_BASECOLOR_TEXTURE 1\n", error) ||
+  if (!prepare_gbuffer(0, true, error) || !prepare_gbuffer(features::base_color_texture, true, error) ||
       !build_raster(*cache_, module_depth_only, "depth_only.frag", modules, error) ||
-      !build_raster(*cache_, module_gbuffer_masked, "gbuffer.frag", modules + kMasked, error) ||
+      !prepare_gbuffer(features::base_color_texture | features::alpha_mask, true, error) ||
       !build_raster(*cache_, module_depth_masked, "depth_only.frag", modules + kMasked, error)) {
-    module_gbuffer_plain = RasterProgram{};
+    module_depth_only = RasterProgram{};
     return false;
   }
   gl::api.UseProgram(0);

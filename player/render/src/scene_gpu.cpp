@@ -1,5 +1,8 @@
 #include "render/scene_gpu.h"
 
+#include "render/programs.h"
+#include "scene/environment.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -10,23 +13,40 @@ namespace {
 // The smallest slice worth a call: below this the per-call overhead dominates.
 constexpr size_t kMinSlice = 64 * 1024;
 
-size_t vertex_bytes(const scene::Mesh& mesh) {
-  return mesh.vertices.size() * sizeof(scene::Vertex);
+// A mesh's bytes go up as four consecutive ranges: vertices, tangents, second UVs, indices.
+struct Ranges {
+  size_t vertices, tangents, uv1, indices;
+  size_t total() const { return vertices + tangents + uv1 + indices; }
+};
+Ranges ranges_of(const scene::Mesh& mesh) {
+  return {mesh.vertices.size() * sizeof(scene::Vertex), mesh.tangents.size() * sizeof(glm::vec4),
+          mesh.uv1.size() * sizeof(glm::vec2), mesh.indices.size() * sizeof(uint32_t)};
 }
-size_t index_bytes(const scene::Mesh& mesh) {
-  return mesh.indices.size() * sizeof(uint32_t);
+
+gl::Buffer stream(GLuint location, GLint components, size_t bytes) {
+  gl::Buffer buffer = gl::make_buffer();
+  gl::api.BindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STATIC_DRAW);
+  gl::api.EnableVertexAttribArray(location);
+  gl::api.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+  return buffer;
 }
 
 SceneGpu::Mesh allocate_mesh(const scene::Mesh& mesh) {
   SceneGpu::Mesh gpu;
   gpu.vao = gl::make_vertex_array();
   gl::api.BindVertexArray(gpu.vao.id());
+  const Ranges bytes = ranges_of(mesh);
+  // Attribute 3 (tangents) and 4 (second UVs) only where the mesh has them; the variants that
+  // read them are only used for materials that make the loader provide them.
+  if (bytes.tangents) gpu.tangents = stream(3, 4, bytes.tangents);
+  if (bytes.uv1) gpu.uv1 = stream(4, 2, bytes.uv1);
   gpu.vertices = gl::make_buffer();
   gl::api.BindBuffer(GL_ARRAY_BUFFER, gpu.vertices.id());
-  gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertex_bytes(mesh)), nullptr, GL_STATIC_DRAW);
+  gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.vertices), nullptr, GL_STATIC_DRAW);
   gpu.indices = gl::make_buffer();
   gl::api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.id());
-  gl::api.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(index_bytes(mesh)), nullptr, GL_STATIC_DRAW);
+  gl::api.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.indices), nullptr, GL_STATIC_DRAW);
   constexpr auto stride = static_cast<GLsizei>(sizeof(scene::Vertex));
   gl::api.EnableVertexAttribArray(0);
   gl::api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(scene::Vertex, position)));
@@ -77,10 +97,20 @@ bool SceneGpu::step(size_t budget_bytes) {
       const scene::Mesh& mesh = scene.meshes[mesh_cursor_];
       if (offset_ == 0) meshes_.push_back(allocate_mesh(mesh));
       const Mesh& gpu = meshes_.back();
-      const size_t vbytes = vertex_bytes(mesh), total = vbytes + index_bytes(mesh);
+      const Ranges bytes = ranges_of(mesh);
+      const size_t total = bytes.total();
       const size_t end = std::min(total, offset_ + slice);
-      upload_range(gpu.vertices, mesh.vertices.data(), std::min(offset_, vbytes), std::min(end, vbytes));
-      upload_range(gpu.indices, mesh.indices.data(), std::max(offset_, vbytes) - vbytes, std::max(end, vbytes) - vbytes);
+      // Each range takes the part of [offset_, end) that falls within it.
+      size_t start = 0;
+      auto part = [&](const gl::Buffer& buffer, const void* data, size_t size) {
+        const size_t from = std::clamp(offset_, start, start + size) - start, to = std::clamp(end, start, start + size) - start;
+        upload_range(buffer, data, from, to);
+        start += size;
+      };
+      part(gpu.vertices, mesh.vertices.data(), bytes.vertices);
+      part(gpu.tangents, mesh.tangents.data(), bytes.tangents);
+      part(gpu.uv1, mesh.uv1.data(), bytes.uv1);
+      part(gpu.indices, mesh.indices.data(), bytes.indices);
       spent += end - offset_;
       offset_ = end;
       if (offset_ >= total) {
@@ -98,7 +128,8 @@ bool SceneGpu::step(size_t budget_bytes) {
         }
         gl::Texture texture = gl::make_texture();
         gl::api.BindTexture(GL_TEXTURE_2D, texture.id());
-        gl::api.TexStorage2D(GL_TEXTURE_2D, mip_levels(source), GL_SRGB8_ALPHA8, source.width, source.height);
+        gl::api.TexStorage2D(GL_TEXTURE_2D, mip_levels(source), source.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, source.width,
+                             source.height);
         textures_.push_back(std::move(texture));
       }
       const size_t row_bytes = static_cast<size_t>(source.width) * 4;
@@ -131,15 +162,52 @@ bool SceneGpu::step(size_t budget_bytes) {
   return false;
 }
 
+void SceneGpu::upload_environment() {
+  std::shared_ptr<const scene::Environment> wanted = source_->environment;
+  // The studio lives for the whole process; it is shared, not owned.
+  if (!wanted) wanted = std::shared_ptr<const scene::Environment>(&scene::studio_environment(), [](const scene::Environment*) {});
+  if (environment_.source == wanted.get() && environment_.specular) return;
+  const scene::Environment& source = *wanted;
+  EnvironmentGpu gpu;
+  gpu.levels = source.levels();
+  gpu.specular = gl::make_texture();
+  gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, gpu.specular.id());
+  gl::api.TexStorage2D(GL_TEXTURE_CUBE_MAP, gpu.levels, GL_RGBA16F, source.face_size, source.face_size);
+  gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  std::vector<float> rgba;
+  for (int level = 0; level < gpu.levels; ++level) {
+    const int size = std::max(source.face_size >> level, 1);
+    const std::vector<float>& faces = source.specular[static_cast<size_t>(level)];
+    const size_t texels = static_cast<size_t>(size) * static_cast<size_t>(size);
+    for (int face = 0; face < 6; ++face) {
+      // RGB float rows are not 4-byte aligned for every size in every driver's eyes; RGBA is.
+      rgba.resize(texels * 4);
+      for (size_t t = 0; t < texels; ++t)
+        for (size_t c = 0; c < 4; ++c) rgba[t * 4 + c] = c < 3 ? faces[(static_cast<size_t>(face) * texels + t) * 3 + c] : 1.0f;
+      gl::api.TexSubImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(face), level, 0, 0, size, size, GL_RGBA,
+                            GL_FLOAT, rgba.data());
+    }
+  }
+  gl::api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl::api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  for (size_t i = 0; i < gpu.irradiance.size(); ++i) gpu.irradiance[i] = glm::vec4(source.irradiance_sh[i], 0.0f);
+  gpu.source = wanted.get();
+  environment_ = std::move(gpu);
+  environment_source_ = std::move(wanted);
+}
+
 void SceneGpu::finish() {
+  upload_environment();
   const scene::Scene& scene = *source_;
   for (const scene::Instance& instance : scene.instances)
     draws_.push_back({instance.mesh, scene.meshes[static_cast<size_t>(instance.mesh)].material, instance.world});
-  // Untextured, textured, then alpha-tested: one program switch per group, and the tested ones,
-  // which lose early depth rejection, drawn last over the depth the others have laid.
+  // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).
   auto group = [&](const Draw& draw) {
     const scene::Material& material = materials_[static_cast<size_t>(draw.material)];
-    return material.alpha_tested() ? 2 : material.base_color_texture >= 0 ? 1 : 0;
+    return material.alpha_tested() ? int(features::count) : int(material_features(material, true));
   };
   std::stable_sort(draws_.begin(), draws_.end(), [&](const Draw& a, const Draw& b) { return group(a) < group(b); });
   bounds_ = scene.bounds;

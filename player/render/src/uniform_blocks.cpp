@@ -1,5 +1,7 @@
 #include "render/uniform_blocks.h"
 
+#include <algorithm>
+
 namespace render {
 namespace {
 
@@ -10,10 +12,8 @@ namespace {
 constexpr float kHistoryDepthTolerance = 0.03f;
 constexpr float kHistoryNormalCosine = 0.9f;
 
-// The shaded image's light: one directional light in view space (from the upper left, in front)
-// and an ambient share.
+// The key light's direction in view space: from the upper left, in front, as a photographer's.
 const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.4f, 0.6f, 0.7f));
-constexpr float kAmbient = 0.35f;
 
 }  // namespace
 
@@ -41,12 +41,20 @@ shared_layout::TemporalParams pack_temporal_params(const ViewTargets& targets, c
 }
 
 shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets, const View& view, glm::ivec2 viewport,
-                                                     float fade) {
+                                                     float fade, const EnvironmentGpu& environment) {
   const FrameSettings& settings = targets.settings();
   shared_layout::CompositeParams params{};
   params.light_direction = glm::vec4(kLightDirection, 0.0f);
+  params.light_color = glm::vec4(glm::vec3(settings.key_light), 0.0f);
+  params.view_to_world = glm::mat4(glm::inverse(view.view));
+  for (size_t i = 0; i < environment.irradiance.size(); ++i) params.irradiance[i] = environment.irradiance[i];
+  params.specular_max_level = static_cast<float>(std::max(environment.levels - 1, 0));
+  params.environment_intensity = settings.environment_intensity;
   params.background = glm::vec4(settings.background, 1.0f);
-  params.unproject = targets.ssao_params.unproject;
+  // From this view's projection, not the SSAO block's: that one is only refreshed when AO runs,
+  // and the shading's view vector needs it every frame.
+  const glm::mat4 projection(view.projection);
+  params.unproject = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
   params.apply_ao = settings.ao ? 1 : 0;
   params.ao_shift = settings.ao_settings.half_resolution ? 1 : 0;
   params.viewport_x = viewport.x;
@@ -59,7 +67,6 @@ shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets,
   params.far_plane = static_cast<float>(view.far);
   params.inverse_far = inverse_far(view);
   params.fade = fade;
-  params.ambient = kAmbient;
   params.ao_strength = settings.ao_strength;
   params.plane_tolerance = targets.upsample_plane_tolerance();
   return params;

@@ -2,6 +2,8 @@
 
 #include "gl_util.h"
 
+#include <vector>
+
 namespace render {
 
 using detail::make_target;
@@ -57,16 +59,36 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal.id(), 0);
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, linear_depth.id(), 0);
     gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0);
+    material = make_target(GL_RG32UI, w, h);
+    // Light field modules on a GPU of four draw buffers keep the positions texture and leave the
+    // material target out: it stays cleared (material.glsl's default material) and is only read.
+    material_attached_ = !(modules && programs.modules_without_material);
     positions = modules ? make_target(GL_RGBA32F, w, h) : gl::Texture{};
-    if (modules) gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_TEXTURE_2D, positions.id(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    gl::api.DrawBuffers(modules ? 4 : 3, buffers);
+    std::vector<GLenum> buffers = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    if (material_attached_) {
+      gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_TEXTURE_2D, material.id(), 0);
+      buffers.push_back(GL_COLOR_ATTACHMENT3);
+    }
+    if (modules) {
+      const GLenum attachment = material_attached_ ? GL_COLOR_ATTACHMENT4 : GL_COLOR_ATTACHMENT3;
+      gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, positions.id(), 0);
+      buffers.push_back(attachment);
+    }
+    gl::api.DrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
     const GLenum status = gl::api.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       error = "the G-buffer framebuffer is incomplete (status 0x" + std::to_string(status) + ")";
       gbuffer_fbo.reset();
       return false;
+    }
+    if (!material_attached_) {
+      gl::Framebuffer clear = gl::make_framebuffer();
+      gl::api.BindFramebuffer(GL_FRAMEBUFFER, clear.id());
+      gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, material.id(), 0);
+      const GLuint value[4] = {kMaterialClearX, 0, 0, 0};
+      gl::api.ClearBufferuiv(GL_COLOR, 0, value);
+      gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     // The projection and the radii in use change with the camera; the passes refresh them.
     ssao_ubo = make_uniform_buffer(&ssao_params, sizeof ssao_params);

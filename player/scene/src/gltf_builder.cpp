@@ -23,8 +23,9 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT
               kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 
 // Extensions whose content the player reads; any of them may be listed in extensionsRequired.
-const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization", "EXT_meshopt_compression",
-                                                    "KHR_draco_mesh_compression", "KHR_texture_transform", "KHR_materials_unlit"};
+const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization",      "EXT_meshopt_compression",
+                                                    "KHR_draco_mesh_compression", "KHR_texture_transform",
+                                                    "KHR_materials_unlit",        "KHR_materials_emissive_strength"};
 
 // What a scene using an extension the player does not read shows instead.
 std::string shown_instead(const std::string& extension) {
@@ -46,19 +47,31 @@ std::vector<Format> normal_formats(bool quantized) {
   if (!quantized) return {{kFloat, false}};
   return {{kFloat, false}, {kByte, true}, {kShort, true}};
 }
+std::vector<Format> tangent_formats(bool quantized) {
+  return normal_formats(quantized);
+}
 std::vector<Format> texcoord_formats(bool quantized) {
   if (!quantized) return {{kFloat, false}, {kUnsignedByte, true}, {kUnsignedShort, true}};
   return position_formats(true);
 }
 
 class Builder {
-  // How a material's base colour texture reads its coordinates: the TEXCOORD set, and the
-  // KHR_texture_transform matrix baked into the mesh's UVs at load (exact: the transform is affine,
-  // and each converted mesh has exactly one material).
+  // How a texture reads its coordinates: the TEXCOORD set, and the KHR_texture_transform matrix
+  // baked into the mesh's UVs at load (exact: the transform is affine, and each converted mesh has
+  // exactly one material). A material's textures share at most two mappings: the base colour's
+  // (Vertex::uv) and one other (Mesh::uv1), which covers the common cases (one set for all, or
+  // occlusion on TEXCOORD_1); a third is sampled with the first, with a warning.
   struct UvMapping {
     int set = 0;
     glm::dmat3 transform{1.0};
     bool transformed = false;
+    bool operator==(const UvMapping& other) const {
+      return set == other.set && transformed == other.transformed && transform == other.transform;
+    }
+  };
+  struct MaterialMappings {
+    UvMapping first, second;
+    bool has_first = false, has_second = false;
   };
 
  public:
@@ -260,6 +273,31 @@ class Builder {
     return read_floats<N>(document_, accessor, field, formats);
   }
 
+  // The primitive's TEXCOORD_<mapping.set>, transformed; empty when it has none (then a warning
+  // if a texture reads it: `needed`).
+  std::vector<glm::vec2> mapped_uvs(const DracoPrimitive* decoded, const tinygltf::Primitive& primitive, const UvMapping& mapping,
+                                    size_t vertex_count, const std::string& where, bool needed) {
+    const std::string uv_name = "TEXCOORD_" + std::to_string(mapping.set);
+    std::vector<glm::vec2> uvs;
+    const auto at = primitive.attributes.find(uv_name);
+    if (at == primitive.attributes.end()) {
+      if (needed && mapping.set != 0)
+        report_.warnings.push_back(where + ".attributes: the material's textures read " + uv_name +
+                                   ", which the primitive lacks; they are sampled at (0, 0)");
+      return uvs;
+    }
+    uvs = attribute<2>(decoded, uv_name, at->second, where + ".attributes." + uv_name, texcoord_formats(quantized_));
+    if (uvs.size() != vertex_count) fail(where + ".attributes." + uv_name + ": count differs from POSITION's");
+    if (mapping.transformed)
+      for (glm::vec2& uv : uvs) {
+        const glm::dvec3 moved = mapping.transform * glm::dvec3(uv, 1.0);
+        if (!std::isfinite(moved.x) || !std::isfinite(moved.y) || std::abs(moved.x) > 3e38 || std::abs(moved.y) > 3e38)
+          fail(where + ".attributes." + uv_name + ": KHR_texture_transform takes a coordinate beyond the float range");
+        uv = glm::vec2(moved);
+      }
+    return uvs;
+  }
+
   Mesh convert(const tinygltf::Primitive& primitive, const nlohmann::json& source, const std::string& where) {
     std::optional<DracoPrimitive> draco;
     if (const auto extensions = source.find("extensions"); extensions != source.end() && extensions->is_object())
@@ -295,22 +333,16 @@ class Builder {
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
     const int material_id = material(primitive.material, where);
-    const UvMapping& mapping = uv_mappings_[material_id];
-    const std::string uv_name = "TEXCOORD_" + std::to_string(mapping.set);
-    std::vector<glm::vec2> uvs;
-    if (auto at = primitive.attributes.find(uv_name); at != primitive.attributes.end()) {
-      uvs = attribute<2>(decoded, uv_name, at->second, where + ".attributes." + uv_name, texcoord_formats(quantized_));
-      if (uvs.size() != vertex_count) fail(where + ".attributes." + uv_name + ": count differs from POSITION's");
-      if (mapping.transformed)
-        for (glm::vec2& uv : uvs) {
-          const glm::dvec3 moved = mapping.transform * glm::dvec3(uv, 1.0);
-          if (!std::isfinite(moved.x) || !std::isfinite(moved.y) || std::abs(moved.x) > 3e38 || std::abs(moved.y) > 3e38)
-            fail(where + ".attributes." + uv_name + ": KHR_texture_transform takes a coordinate beyond the float range");
-          uv = glm::vec2(moved);
-        }
-    } else if (scene_.materials[static_cast<size_t>(material_id)].base_color_texture >= 0 && mapping.set != 0) {
-      report_.warnings.push_back(where + ".attributes: the material's base colour texture reads " + uv_name +
-                                 ", which the primitive lacks; it is sampled at (0, 0)");
+    const MaterialMappings& mappings = uv_mappings_[material_id];
+    const scene::Material& shown = scene_.materials[static_cast<size_t>(material_id)];
+    const std::vector<glm::vec2> uvs = mapped_uvs(decoded, primitive, mappings.first, vertex_count, where, mappings.has_first);
+    std::vector<glm::vec2> second_uvs;
+    if (mappings.has_second) second_uvs = mapped_uvs(decoded, primitive, mappings.second, vertex_count, where, true);
+    std::vector<glm::vec4> tangents;
+    const bool wants_tangents = shown.normal.present() && !normals.empty();
+    if (auto at = primitive.attributes.find("TANGENT"); wants_tangents && at != primitive.attributes.end()) {
+      tangents = attribute<4>(decoded, "TANGENT", at->second, where + ".attributes.TANGENT", tangent_formats(quantized_));
+      if (tangents.size() != vertex_count) fail(where + ".attributes.TANGENT: count differs from POSITION's");
     }
 
     std::vector<uint32_t> indices;
@@ -346,6 +378,7 @@ class Builder {
         for (int k = 0; k < 3; ++k) {
           const uint32_t from = indices[t + static_cast<size_t>(k)];
           mesh.vertices.push_back({positions[from], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[from]});
+          if (!second_uvs.empty()) mesh.uv1.push_back(second_uvs[from]);
           mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
         }
       }
@@ -358,7 +391,22 @@ class Builder {
         mesh.vertices[i] = {positions[i], normal, uvs.empty() ? glm::vec2(0.0f) : uvs[i]};
       }
       mesh.indices = std::move(indices);
+      mesh.uv1 = std::move(second_uvs);
+      // The file's tangents, normalised; w must be the sign of a handedness (glTF: +1 or -1).
+      for (size_t i = 0; i < tangents.size(); ++i) {
+        glm::vec4& t = tangents[i];
+        const float length = glm::length(glm::vec3(t));
+        if (!(length > 1e-30f)) {
+          tangents.clear();  // a zero tangent: the file's frames are unusable, so all are generated
+          report_.warnings.push_back(where + ".attributes.TANGENT: element " + std::to_string(i) +
+                                     " is zero; tangents are generated instead");
+          break;
+        }
+        t = glm::vec4(glm::vec3(t) / length, t.w < 0.0f ? -1.0f : 1.0f);
+      }
+      mesh.tangents = std::move(tangents);
     }
+    if (shown.normal.present() && mesh.tangents.empty()) generate_tangents(mesh, shown.normal.second_uv);
     mesh.min = glm::vec3(std::numeric_limits<float>::max());
     mesh.max = glm::vec3(std::numeric_limits<float>::lowest());
     for (const Vertex& v : mesh.vertices) {
@@ -416,22 +464,85 @@ class Builder {
         fail(field + ".pbrMetallicRoughness.baseColorFactor: expected finite numbers");
       material.base_color[c] = static_cast<float>(std::clamp(factor[static_cast<size_t>(c)], 0.0, 1.0));
     }
-    const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
-    UvMapping mapping;
-    if (info.index >= 0) {
-      material.base_color_texture = texture(info.index, field + ".pbrMetallicRoughness.baseColorTexture.index");
-      mapping.set = info.texCoord;
-      const nlohmann::json& texture_info =
-          document_.root()["materials"][static_cast<size_t>(index)]["pbrMetallicRoughness"]["baseColorTexture"];
-      if (const auto extensions = texture_info.find("extensions"); extensions != texture_info.end() && extensions->is_object())
-        if (const auto transform = extensions->find("KHR_texture_transform"); transform != extensions->end())
-          read_texture_transform(*transform, field + ".pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
-                                 mapping);
-    }
+    const std::string pbr = field + ".pbrMetallicRoughness";
+    material.metallic = unit_factor(source.pbrMetallicRoughness.metallicFactor, pbr + ".metallicFactor");
+    material.roughness = unit_factor(source.pbrMetallicRoughness.roughnessFactor, pbr + ".roughnessFactor");
+    const nlohmann::json& json_material = document_.root()["materials"][static_cast<size_t>(index)];
+    MaterialMappings mappings;
+    // Each texture: its Scene texture in the colour space it is read in, and which mapping it uses.
+    auto slot = [&](int texture_index, int tex_coord, const nlohmann::json* info, const std::string& at, bool srgb) {
+      TextureSlot out;
+      if (texture_index < 0) return out;
+      out.texture = texture(texture_index, at + ".index", srgb);
+      UvMapping mapping;
+      mapping.set = tex_coord;
+      if (info && info->is_object())
+        if (const auto extensions = info->find("extensions"); extensions != info->end() && extensions->is_object())
+          if (const auto transform = extensions->find("KHR_texture_transform"); transform != extensions->end())
+            read_texture_transform(*transform, at + ".extensions.KHR_texture_transform", mapping);
+      if (!mappings.has_first || mappings.first == mapping) {
+        mappings.first = mapping;
+        mappings.has_first = true;
+      } else if (!mappings.has_second || mappings.second == mapping) {
+        mappings.second = mapping;
+        mappings.has_second = out.second_uv = true;
+      } else {
+        report_.warnings.push_back(at + ": a third texture coordinate mapping in one material; sampled with the first");
+      }
+      return out;
+    };
+    auto info_of = [&](const nlohmann::json& holder, const char* key) -> const nlohmann::json* {
+      if (!holder.is_object()) return nullptr;
+      const auto found = holder.find(key);
+      return found == holder.end() ? nullptr : &*found;
+    };
+    const nlohmann::json* json_pbr = info_of(json_material, "pbrMetallicRoughness");
+    const nlohmann::json empty = nlohmann::json::object();
+    const nlohmann::json& pbr_json = json_pbr ? *json_pbr : empty;
+    // The base colour comes first: its mapping is the one every mesh has in Vertex::uv.
+    const tinygltf::TextureInfo& base = source.pbrMetallicRoughness.baseColorTexture;
+    material.base_color_texture =
+        slot(base.index, base.texCoord, info_of(pbr_json, "baseColorTexture"), pbr + ".baseColorTexture", true).texture;
+    const tinygltf::TextureInfo& mr = source.pbrMetallicRoughness.metallicRoughnessTexture;
+    material.metallic_roughness =
+        slot(mr.index, mr.texCoord, info_of(pbr_json, "metallicRoughnessTexture"), pbr + ".metallicRoughnessTexture", false);
+    const tinygltf::NormalTextureInfo& normal = source.normalTexture;
+    material.normal =
+        slot(normal.index, normal.texCoord, info_of(json_material, "normalTexture"), field + ".normalTexture", false);
+    // A normal map that could not be decoded is drawn without (a white texel is no normal).
+    if (material.normal.present() && material.normal.texture == white_) material.normal = TextureSlot{};
+    if (!std::isfinite(normal.scale)) fail(field + ".normalTexture.scale: expected a finite number");
+    material.normal_scale = static_cast<float>(normal.scale);
+    const tinygltf::OcclusionTextureInfo& occlusion = source.occlusionTexture;
+    material.occlusion =
+        slot(occlusion.index, occlusion.texCoord, info_of(json_material, "occlusionTexture"), field + ".occlusionTexture", false);
+    material.occlusion_strength = unit_factor(occlusion.strength, field + ".occlusionTexture.strength");
+    const tinygltf::TextureInfo& emissive = source.emissiveTexture;
+    material.emissive_texture =
+        slot(emissive.index, emissive.texCoord, info_of(json_material, "emissiveTexture"), field + ".emissiveTexture", true);
+    if (source.emissiveFactor.size() != 3) fail(field + ".emissiveFactor: expected 3 numbers");
+    float strength = 1.0f;
+    if (const nlohmann::json* extensions = info_of(json_material, "extensions"))
+      if (const nlohmann::json* found = info_of(*extensions, "KHR_materials_emissive_strength")) {
+        const std::string at = field + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+        const nlohmann::json* value = info_of(*found, "emissiveStrength");
+        if (!found->is_object() || (value && (!value->is_number() || !std::isfinite(value->get<double>()) ||
+                                              value->get<double>() < 0.0 || value->get<double>() > 1e6)))
+          fail(at + ": expected a number from 0 to 1e6");
+        if (value) strength = value->get<float>();
+      }
+    for (int c = 0; c < 3; ++c)
+      material.emissive[c] = unit_factor(source.emissiveFactor[static_cast<size_t>(c)], field + ".emissiveFactor") * strength;
     scene_.materials.push_back(material);
     const int id = static_cast<int>(scene_.materials.size()) - 1;
-    uv_mappings_[id] = mapping;
+    uv_mappings_[id] = mappings;
     return materials_[index] = id;
+  }
+
+  // glTF's factors in [0, 1]; out of range is clamped as the validator only warns, non-finite refused.
+  static float unit_factor(double value, const std::string& field) {
+    if (!std::isfinite(value)) fail(field + ": " + std::to_string(value) + "; expected a number from 0 to 1");
+    return static_cast<float>(std::clamp(value, 0.0, 1.0));
   }
 
   // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv with R taking (u, v) to
@@ -469,10 +580,12 @@ class Builder {
     mapping.transformed = true;
   }
 
-  int texture(int index, const std::string& field) {
+  // Scene texture of glTF texture `index` read as colour (`srgb`) or data: a texture used both ways
+  // (rare) becomes two, since the GPU decodes sRGB by format.
+  int texture(int index, const std::string& field, bool srgb) {
     if (static_cast<size_t>(index) >= model_.textures.size())
       fail(field + ": " + std::to_string(index) + " out of range (there are " + std::to_string(model_.textures.size()) + ")");
-    if (auto found = textures_.find(index); found != textures_.end()) return found->second;
+    if (auto found = textures_.find({index, srgb}); found != textures_.end()) return found->second;
     const tinygltf::Texture& source = model_.textures[static_cast<size_t>(index)];
     const std::string where = "textures[" + std::to_string(index) + "]";
     // A texture without a source (one only an extension such as KHR_texture_basisu supplies) is
@@ -482,6 +595,7 @@ class Builder {
     // An image that could not be used is drawn white; the document has put the reason in the warnings.
     if (image.rgba.empty()) return white_texture();
     Texture texture;
+    texture.srgb = srgb;
     texture.width = image.width;
     texture.height = image.height;
     texture.rgba = image.rgba;
@@ -497,7 +611,7 @@ class Builder {
       fail(where + ".sampler: " + std::to_string(source.sampler) + " out of range");
     }
     scene_.textures.push_back(std::move(texture));
-    return textures_[index] = static_cast<int>(scene_.textures.size()) - 1;
+    return textures_[{index, srgb}] = static_cast<int>(scene_.textures.size()) - 1;
   }
 
   int white_texture() {
@@ -516,11 +630,12 @@ class Builder {
   const tinygltf::Model& model_;
   LoadReport& report_;
   const bool quantized_;
-  std::map<int, UvMapping> uv_mappings_;  // by Scene material index
+  std::map<int, MaterialMappings> uv_mappings_;  // by Scene material index
   int white_ = -1;
   Scene scene_;
   std::map<int, std::vector<int>> converted_;
-  std::map<int, int> materials_, textures_;
+  std::map<int, int> materials_;
+  std::map<std::pair<int, bool>, int> textures_;  // (glTF texture, sRGB) -> Scene texture
 };
 
 }  // namespace

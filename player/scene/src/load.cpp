@@ -1,5 +1,6 @@
 #include "scene/load.h"
 
+#include "scene/environment.h"
 #include "scene/gltf_loader.h"
 #include "scene/procedural.h"
 
@@ -9,6 +10,19 @@ namespace scene {
 namespace {
 constexpr std::string_view kBuiltinPrefix = "builtin:";
 }  // namespace
+
+bool load_environment_spec(const std::string& spec, std::shared_ptr<const Environment>& out, std::string& error) {
+  out.reset();
+  if (spec.empty() || spec == "builtin:studio") return true;
+  if (spec.rfind(kBuiltinPrefix, 0) == 0) {
+    error = spec + ": no such built-in environment (expected builtin:studio)";
+    return false;
+  }
+  auto environment = std::make_shared<Environment>();
+  if (!load_environment(spec, *environment, error)) return false;
+  out = std::move(environment);
+  return true;
+}
 
 bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log, const LoadOptions& options) {
   if (spec.rfind(kBuiltinPrefix, 0) == 0) {

@@ -17,9 +17,13 @@ void finish(Mesh& mesh) {
   }
 }
 
+// The built-in scenes are matte paint: a dielectric, rough enough that the studio's soft boxes
+// show as broad sheens rather than mirror images.
 Material solid(glm::vec3 colour) {
   Material material;
   material.base_color = glm::vec4(colour, 1.0f);
+  material.metallic = 0.0f;
+  material.roughness = 0.6f;
   return material;
 }
 

@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace scene {
@@ -40,6 +42,46 @@ void recenter_meshes(Scene& scene) {
     instance.world = instance.world * glm::dmat4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, c.x, c.y, c.z, 1);
   }
   update_bounds(scene);
+}
+
+void generate_tangents(Mesh& mesh, bool from_uv1) {
+  const size_t count = mesh.vertices.size();
+  std::vector<glm::dvec3> tangent(count, glm::dvec3(0.0)), bitangent(count, glm::dvec3(0.0));
+  auto uv = [&](uint32_t i) { return glm::dvec2(from_uv1 ? mesh.uv1[i] : mesh.vertices[i].uv); };
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const uint32_t corner[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+    for (int k = 0; k < 3; ++k) {
+      // Each corner's own edges, weighted by the corner's angle as MikkTSpace weights them, so a
+      // vertex's frame does not depend on how finely the faces around it are split.
+      const uint32_t i = corner[k], j = corner[(k + 1) % 3], l = corner[(k + 2) % 3];
+      const glm::dvec3 p = mesh.vertices[i].position;
+      const glm::dvec3 e1 = glm::dvec3(mesh.vertices[j].position) - p, e2 = glm::dvec3(mesh.vertices[l].position) - p;
+      const glm::dvec2 d1 = uv(j) - uv(i), d2 = uv(l) - uv(i);
+      const double det = d1.x * d2.y - d2.x * d1.y;
+      const double lengths = glm::length(e1) * glm::length(e2);
+      if (std::abs(det) < 1e-20 || lengths <= 0.0 || !std::isfinite(det)) continue;  // no UV area: says nothing
+      const double angle = std::acos(std::clamp(glm::dot(e1, e2) / lengths, -1.0, 1.0));
+      const glm::dvec3 s = (e1 * d2.y - e2 * d1.y) / det, b = (e2 * d1.x - e1 * d2.x) / det;
+      const double s_length = glm::length(s), b_length = glm::length(b);
+      if (s_length > 0.0 && std::isfinite(s_length)) tangent[i] += s / s_length * angle;
+      if (b_length > 0.0 && std::isfinite(b_length)) bitangent[i] += b / b_length * angle;
+    }
+  }
+  mesh.tangents.assign(count, glm::vec4(1, 0, 0, 1));
+  for (size_t i = 0; i < count; ++i) {
+    const glm::dvec3 n = mesh.vertices[i].normal;
+    glm::dvec3 t = tangent[i] - n * glm::dot(n, tangent[i]);  // Gram-Schmidt onto the normal's plane
+    double length = glm::length(t);
+    if (!(length > 1e-12)) {
+      // No UV gradient here (a degenerate mapping): any vector in the plane keeps the frame valid.
+      t = std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0));
+      length = glm::length(t);
+      if (!(length > 1e-12)) continue;  // a zero normal: the shader faces it to the eye anyway
+    }
+    t /= length;
+    const double handedness = glm::dot(glm::cross(n, t), bitangent[i]) < 0.0 ? -1.0 : 1.0;
+    mesh.tangents[i] = glm::vec4(glm::vec3(t), static_cast<float>(handedness));
+  }
 }
 
 }  // namespace scene

@@ -13,6 +13,7 @@ namespace app {
 struct PlayOptions {
   std::vector<std::string> inputs;  // one .toml playlist, or scene files / builtin:NAME; empty: builtin:demo
   std::string content_root;         // paths of a playlist must stay inside; default the playlist's folder
+  std::string environment;          // --environment: what lights items that name none (empty: the studio)
   double duration_s = 10.0;         // scenes named on the command line: seconds each
   double period_s = 20.0;           // ... on a turntable of this many seconds per turn
   std::string platform = "auto";    // auto: kms without a display server, window with one, egl otherwise

@@ -14,8 +14,9 @@
 namespace app {
 
 struct RenderOptions {
-  std::string scene;   // a .gltf/.glb path or builtin:NAME
-  std::string output;  // PNG path
+  std::string scene;        // a .gltf/.glb path or builtin:NAME
+  std::string environment;  // --environment: an equirectangular HDR/EXR, or builtin:studio (empty: the studio)
+  std::string output;       // PNG path
   std::string platform = "auto";
   std::string dump_dir;  // empty: no dump
   int frames = 1;        // frames rendered; times are the median over all but the first

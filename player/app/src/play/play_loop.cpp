@@ -65,6 +65,8 @@ void PlayLoop::watch_content() {
   for (const playback::Item& item : playlist_->items) {
     if (item.scene.rfind("builtin:", 0) != 0) folders.insert(fs::path(item.scene).parent_path().string());
     if (!item.display.empty()) folders.insert(fs::path(item.display).parent_path().string());
+    if (!item.environment.empty() && item.environment.rfind("builtin:", 0) != 0)
+      folders.insert(fs::path(item.environment).parent_path().string());
   }
   std::vector<std::string> problems;
   p_.watch.watch(folders, problems);

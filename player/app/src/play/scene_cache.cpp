@@ -109,9 +109,9 @@ void SceneCache::reload_all() {
 }
 
 void SceneCache::reload(const std::string& path) {
-  // A deleted scene or display fails to load and is reported; the last good version keeps playing.
+  // A deleted scene, display or environment fails to load and is reported; the last good version keeps playing.
   for (const auto& [key, scene] : scenes_)
-    if (scene_of(key) == path || display_of(key) == path) loader_.load_scene(key);
+    if (scene_of(key) == path || display_of(key) == path || environment_of(key) == path) loader_.load_scene(key);
 }
 
 void SceneCache::append_warnings(std::vector<std::string>& out) const {

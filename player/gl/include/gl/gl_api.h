@@ -22,7 +22,8 @@ namespace gl {
   X(PFNGLGETINTEGERVPROC, GetIntegerv) X(PFNGLGETERRORPROC, GetError)                 \
   X(PFNGLENABLEPROC, Enable) X(PFNGLDISABLEPROC, Disable)                             \
   X(PFNGLVIEWPORTPROC, Viewport) X(PFNGLCLEARPROC, Clear) X(PFNGLDRAWARRAYSPROC, DrawArrays) \
-  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv) X(PFNGLDEPTHFUNCPROC, DepthFunc)           \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv) X(PFNGLCLEARBUFFERUIVPROC, ClearBufferuiv)  \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc) X(PFNGLUNIFORM3FVPROC, Uniform3fv)                  \
   X(PFNGLDEPTHMASKPROC, DepthMask) X(PFNGLCOLORMASKPROC, ColorMask)                   \
   X(PFNGLCULLFACEPROC, CullFace) X(PFNGLFRONTFACEPROC, FrontFace)                     \
   X(PFNGLGENBUFFERSPROC, GenBuffers) X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)         \

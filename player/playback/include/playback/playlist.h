@@ -54,7 +54,10 @@ struct Item {
   bool has_background = false;
   glm::vec3 background{0};
   std::string display;  // light-field display description, resolved like `scene`; empty if none
-  int line = 0;         // where the item's table starts, for messages
+  // What lights the scene: an equirectangular HDR/EXR resolved like `scene`, or builtin:studio;
+  // empty: the player's default (--environment, else the built-in studio).
+  std::string environment;
+  int line = 0;  // where the item's table starts, for messages
 };
 
 struct Playlist {
@@ -77,6 +80,8 @@ struct ParseOptions {
   // root is taken against the current directory.
   std::string content_root;
   SettingValidator validate_setting;  // null: accept any setting
+  // The environment of items that name none (play --environment); empty: the built-in studio.
+  std::string default_environment;
 };
 
 // Parses a playlist. `source_path` names the file in messages and is the folder relative paths

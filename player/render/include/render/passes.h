@@ -37,6 +37,11 @@ struct PassContext {
   void finish_pass(Pass pass) const;  // error check and timer mark
 };
 
+// Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), so the
+// frames that draw it compile nothing.
+bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
+                               std::string& error);
+
 void depth_prepass(const PassContext& context);
 void gbuffer_pass(const PassContext& context, bool after_prepass);
 // The AO passes (depth chain, SSAO, temporal accumulation, blur). Returns false when the last

@@ -6,6 +6,7 @@
 #include "gl/objects.h"
 #include "gl/session.h"
 #include "render/settings.h"
+#include "scene/scene.h"
 #include "ssao/sampling.h"
 
 #include <array>
@@ -16,7 +17,29 @@ namespace render {
 struct RasterProgram {
   const gl::Program* program = nullptr;
   GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1, lit = -1;
+  GLint material = -1, emissive = -1;
 };
+
+// What a material asks of the G-buffer program (gbuffer.frag's variants), as bits.
+namespace features {
+constexpr unsigned base_color_texture = 1u << 0;
+constexpr unsigned alpha_mask = 1u << 1;
+constexpr unsigned metallic_roughness_texture = 1u << 2;
+constexpr unsigned normal_texture = 1u << 3;
+constexpr unsigned occlusion_texture = 1u << 4;
+constexpr unsigned emissive_texture = 1u << 5;
+// Which of those textures read the second UV mapping.
+constexpr unsigned metallic_roughness_uv1 = 1u << 6;
+constexpr unsigned normal_uv1 = 1u << 7;
+constexpr unsigned occlusion_uv1 = 1u << 8;
+constexpr unsigned emissive_uv1 = 1u << 9;
+constexpr unsigned count = 1u << 10;
+}  // namespace features
+
+// The feature bits of `material`; `untextured_variant` off: untextured materials fetch a white texel.
+unsigned material_features(const scene::Material& material, bool untextured_variant);
+// Texture units of the G-buffer programs' samplers.
+enum TextureUnit { unit_base_color = 0, unit_metallic_roughness, unit_normal, unit_occlusion, unit_emissive };
 
 class Programs {
  public:
@@ -50,10 +73,19 @@ class Programs {
   const gl::Program* rotate = nullptr;
   GLint rotate_quarter_turns = -1;
 
-  RasterProgram gbuffer_plain, gbuffer_textured, depth_only;
-  RasterProgram gbuffer_masked, depth_masked;  // alpha-tested materials (scene::Material::alpha_tested)
-  RasterProgram module_gbuffer_plain, module_gbuffer_textured, module_depth_only;  // see build_module_programs
-  RasterProgram module_gbuffer_masked, module_depth_masked;
+  // The G-buffer program of a feature set (features::), compiled by prepare_gbuffer; null before.
+  const RasterProgram* gbuffer(unsigned feature_bits, bool modules) const {
+    const RasterProgram& program = gbuffer_[modules ? 1 : 0][feature_bits];
+    return program.program ? &program : nullptr;
+  }
+  // Compiles the variant of `feature_bits` (for light field modules: `modules`) unless it exists.
+  bool prepare_gbuffer(unsigned feature_bits, bool modules, std::string& error);
+  RasterProgram depth_only, depth_masked;                // alpha-tested materials (scene::Material::alpha_tested)
+  RasterProgram module_depth_only, module_depth_masked;  // see build_module_programs
+  // Light field modules cannot write the material target (a GPU with four draw buffers).
+  bool modules_without_material = false;
+  // The split-sum table of the present pass (scene::split_sum_lut), made with the programs.
+  gl::Texture brdf_lut;
   const gl::Program *depth_chain = nullptr, *blur_gaussian = nullptr, *blur_bilateral = nullptr, *blur_denoise = nullptr,
                     *upsample = nullptr, *temporal = nullptr;
   GLint depth_chain_source_level = -1;
@@ -71,6 +103,7 @@ class Programs {
   using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
   PerVariant<const gl::Program*> ssao_{};
   std::array<std::array<const gl::Program*, 2>, std::size(kPictureNames)> present_{};
+  std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{};
   PerVariant<std::string> ssao_defines_{};
   PerVariant<GLint> ssao_inverse_far_{};
 };

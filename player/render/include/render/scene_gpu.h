@@ -5,17 +5,27 @@
 #include "gl/objects.h"
 #include "scene/scene.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace render {
 
+// An environment on the GPU: the prefiltered cube map and the irradiance coefficients.
+struct EnvironmentGpu {
+  gl::Texture specular;  // cube map, RGBA16F, a level per roughness step
+  int levels = 0;
+  std::array<glm::vec4, 9> irradiance{};
+  const scene::Environment* source = nullptr;  // which one is uploaded (the scene keeps it alive)
+};
+
 class SceneGpu {
  public:
   struct Mesh {
     gl::VertexArray vao;
     gl::Buffer vertices, indices;
+    gl::Buffer tangents, uv1;  // only where the scene's mesh has them
     GLsizei index_count = 0;
   };
   struct Draw {
@@ -39,15 +49,20 @@ class SceneGpu {
   const std::vector<Mesh>& meshes() const { return meshes_; }
   const std::vector<gl::Texture>& textures() const { return textures_; }
   const std::vector<scene::Material>& materials() const { return materials_; }
-  const std::vector<Draw>& draws() const { return draws_; }  // untextured first, then textured, then alpha-tested
+  // Grouped by G-buffer variant (one program switch per group), alpha-tested last: they lose early
+  // depth rejection and are drawn over the depth the others have laid.
+  const std::vector<Draw>& draws() const { return draws_; }
   // The scene's world-space box, known once ready().
   const scene::Bounds& bounds() const { return bounds_; }
   double radius() const { return radius_; }
   glm::dvec3 centre() const { return centre_; }
   size_t bytes() const { return bytes_; }  // uploaded so far
+  // What lights the scene (its own environment, else the built-in studio), known once ready().
+  const EnvironmentGpu& environment() const { return environment_; }
 
  private:
   void finish();
+  void upload_environment();
 
   std::shared_ptr<const scene::Scene> source_;
   int max_texture_size_ = 0;
@@ -63,6 +78,8 @@ class SceneGpu {
   double radius_ = 1.0;
   glm::dvec3 centre_{0.0};
   size_t bytes_ = 0;
+  std::shared_ptr<const scene::Environment> environment_source_;
+  EnvironmentGpu environment_;
 };
 
 }  // namespace render

@@ -3,6 +3,7 @@
 // each fills its block from what the block is made of and nothing else, so what a shader reads can
 // be traced to its source here. ssao/params.h packs the SSAO and blur blocks, which the CPU
 // reference reads too.
+#include "render/scene_gpu.h"
 #include "render/view.h"
 #include "render/view_targets.h"
 
@@ -15,9 +16,9 @@ namespace render {
 shared_layout::TemporalParams pack_temporal_params(const ViewTargets& targets, const View& view, bool moved);
 
 // present.frag's, for `view` presented with its lower-left pixel at `viewport` in the framebuffer;
-// `fade` multiplies the image.
+// `fade` multiplies the image; `environment` lights it.
 shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets, const View& view, glm::ivec2 viewport,
-                                                     float fade);
+                                                     float fade, const EnvironmentGpu& environment);
 
 // upsample.comp's (read-back only): the upsampling the last presented frame did, with its 1/far.
 shared_layout::UpsampleParams pack_upsample_params(const ViewTargets& targets);

@@ -42,6 +42,11 @@ class ViewTargets {
   float upsample_plane_tolerance() const { return modules_ ? 0.0f : 0.002f; }
 
   gl::Texture albedo, normal, linear_depth, depth, ao_raw, ao_temp, ao_blurred;
+  gl::Texture material;  // rg32ui, gles_shaders/material.glsl
+  // The cleared material texel (material.glsl's MATERIAL_CLEAR_X): rough, dielectric, unoccluded.
+  static constexpr GLuint kMaterialClearX = 0x00FF00FFu;
+  // Whether the G-buffer pass writes `material` (see Programs::modules_without_material).
+  bool material_attached() const { return material_attached_; }
   gl::Texture positions;  // modules only: world position per pixel, a = 1 on objects
   // Temporal accumulation, ping-ponged: r = averaged AO, g = depth / far, b = frames averaged (rgba32f); and
   // the world normal of each texel, for the next frame's disocclusion test.
@@ -74,7 +79,7 @@ class ViewTargets {
  private:
   FrameSettings settings_;
   int width_ = 0, height_ = 0;
-  bool half_ = false, modules_ = false;
+  bool half_ = false, modules_ = false, material_attached_ = true;
 };
 
 }  // namespace render

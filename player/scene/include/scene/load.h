@@ -4,6 +4,7 @@
 #include "scene/scene.h"
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 
 namespace scene {
@@ -11,5 +12,9 @@ namespace scene {
 // Returns false and says why in `error` (the file, the field and what was expected); loader
 // warnings (skipped primitives and the like) go to `log`.
 bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log, const LoadOptions& options = {});
+
+// An environment by spec: "builtin:studio" or empty (then `out` is null: the renderer's built-in
+// studio), or an equirectangular HDR/EXR file (scene/environment.h), prepared here. False and why.
+bool load_environment_spec(const std::string& spec, std::shared_ptr<const Environment>& out, std::string& error);
 
 }  // namespace scene

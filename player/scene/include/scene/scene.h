@@ -4,10 +4,13 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace scene {
+
+struct Environment;
 
 struct Vertex {
   glm::vec3 position;
@@ -18,6 +21,11 @@ struct Vertex {
 struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;  // a triangle list
+  // Streams only some materials need, empty otherwise (or as long as `vertices`): tangents (xyz,
+  // and w = +-1 the bitangent's sign, glTF's TANGENT) for a normal map, and a second UV mapping for
+  // textures that read other coordinates than the base colour's (TextureSlot::second_uv).
+  std::vector<glm::vec4> tangents;
+  std::vector<glm::vec2> uv1;
   int material = 0;
   glm::vec3 min{0.0f}, max{0.0f};  // bounds of the positions
 };
@@ -26,7 +34,8 @@ enum class Filter { nearest, linear };
 
 struct Texture {
   int width = 0, height = 0;
-  std::vector<uint8_t> rgba;  // 8-bit sRGB-encoded RGBA, row 0 at the top
+  std::vector<uint8_t> rgba;  // 8-bit RGBA, row 0 at the top
+  bool srgb = true;           // colour (sRGB-encoded: base colour, emissive) or data (normals, roughness...)
   Filter mag = Filter::linear;
   bool mipmaps = true;
   bool repeat_s = true, repeat_t = true;
@@ -35,9 +44,27 @@ struct Texture {
 // glTF's alphaMode. blend is drawn as mask at its cutoff until a forward pass exists (the loader warns).
 enum class AlphaMode { opaque, mask, blend };
 
+// A material's texture: its index into Scene::textures (-1: none) and which of the mesh's two UV
+// mappings it reads (Vertex::uv, or Mesh::uv1 when second_uv).
+struct TextureSlot {
+  int texture = -1;
+  bool second_uv = false;
+  bool present() const { return texture >= 0; }
+};
+
+// glTF 2.0's metallic-roughness material. The defaults are those of a glTF material without
+// pbrMetallicRoughness (metallic and rough); the procedural scenes set their own.
 struct Material {
   glm::vec4 base_color{1.0f};
-  int base_color_texture = -1;  // index into Scene::textures
+  int base_color_texture = -1;  // index into Scene::textures; reads Vertex::uv
+  float metallic = 1.0f, roughness = 1.0f;
+  TextureSlot metallic_roughness;  // B metallic, G roughness (glTF)
+  TextureSlot normal;              // tangent-space normals; the mesh carries tangents
+  float normal_scale = 1.0f;
+  TextureSlot occlusion;  // R
+  float occlusion_strength = 1.0f;
+  glm::vec3 emissive{0.0f};  // linear, KHR_materials_emissive_strength already applied
+  TextureSlot emissive_texture;
   bool double_sided = false;
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;  // mask: fragments whose alpha is below it are not drawn
@@ -77,6 +104,9 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Instance> instances;
   std::vector<FileCamera> cameras;  // in the order the shown scene's nodes are visited
+  // What lights it (scene/environment.h): given by whoever shows the scene (a playlist's
+  // `environment`, --environment); null: the built-in studio.
+  std::shared_ptr<const Environment> environment;
   Bounds bounds;
   size_t triangle_count() const;
 };
@@ -88,5 +118,11 @@ void update_bounds(Scene& scene);
 // instances' double-precision transforms: the GPU then never subtracts two large floats, so a mesh
 // whose coordinates sit far from the origin keeps the precision its file gave it.
 void recenter_meshes(Scene& scene);
+
+// Tangents for a normal map from the mesh's positions, normals and UVs (Vertex::uv, or Mesh::uv1
+// with `from_uv1`), in MikkTSpace's conventions: per vertex, angle-weighted, orthogonal to the
+// normal, w the bitangent's sign (bitangent = w * cross(normal, tangent)). Unlike MikkTSpace it does
+// not split vertices whose faces disagree; files exported with their own TANGENT keep them.
+void generate_tangents(Mesh& mesh, bool from_uv1);
 
 }  // namespace scene

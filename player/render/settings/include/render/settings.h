@@ -51,7 +51,12 @@ struct FrameSettings {
   // what that saves (aobench's untextured-variant=off): they then sample a 1x1 white texture.
   bool untextured_variant = true;
   glm::vec3 background{0.05f, 0.06f, 0.08f};  // linear RGB of empty pixels
-  bool check_errors = false;                  // glGetError after each pass (tests, debug runs)
+  // The light: the environment (the scene's, or the built-in studio) scaled by environment_intensity,
+  // and the key light, a directional light fixed to the camera (from the upper left, in front) of
+  // irradiance key_light (0: none).
+  float environment_intensity = 1.0f;
+  float key_light = 1.0f;
+  bool check_errors = false;  // glGetError after each pass (tests, debug runs)
 };
 
 // One key of the codec.

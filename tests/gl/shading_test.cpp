@@ -99,6 +99,91 @@ TEST_P(Shading, EmissionIsAddedAsItIs) {
   EXPECT_EQ(worst_relative_error(dark, 1.0), 1.0);  // every channel 0: relative error exactly 1
 }
 
+// A 1x1 texture of one RGBA texel, as data (normals, occlusion) or colour.
+scene::Texture texel(uint8_t r, uint8_t g, uint8_t b, bool srgb = false) {
+  scene::Texture texture;
+  texture.width = texture.height = 1;
+  texture.rgba = {r, g, b, 255};
+  texture.mipmaps = false;
+  texture.srgb = srgb;
+  return texture;
+}
+
+// A normal map turns the shading normal in the frame of the mesh's tangents (MikkTSpace: bitangent
+// = w * cross(normal, tangent)); the face's plane, which the horizon estimator reads, stays.
+TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
+  for (const float handedness : {1.0f, -1.0f}) {
+    scene::Scene built;
+    scene::Material material;
+    material.normal.texture = 0;
+    // Tilted towards the tangent and a little towards the bitangent, so that w's sign shows.
+    built.textures = {texel(204, 140, 230)};
+    built.materials = {material};
+    scene::Mesh quad = scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);  // normal +z
+    quad.tangents.assign(quad.vertices.size(), glm::vec4(1, 0, 0, handedness));
+    scene::add_instance(built, std::move(quad));
+    scene::update_bounds(built);
+    render::FrameSettings settings;
+    settings.width = settings.height = 64;
+    settings.check_errors = true;
+    Harness h;
+    scene::Framing head_on;
+    head_on.azimuth_deg = 0.0;
+    head_on.elevation_deg = 0.0;
+    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+    EXPECT_EQ(h.renderer.gl_error(), "");
+    const glm::dmat3 to_view(h.camera.view());
+    const glm::vec3 m(204 / 255.0f * 2 - 1, 140 / 255.0f * 2 - 1, 230 / 255.0f * 2 - 1);
+    const glm::vec3 bitangent = handedness * glm::cross(glm::vec3(0, 0, 1), glm::vec3(1, 0, 0));
+    const glm::vec3 expected = glm::normalize(glm::vec3(to_view * glm::dvec3(m.x * glm::vec3(1, 0, 0) + m.y * bitangent +
+                                                                               m.z * glm::vec3(0, 0, 1))));
+    const glm::vec3 face = glm::normalize(glm::vec3(to_view * glm::dvec3(0, 0, 1)));
+    const auto normals = h.renderer.read_view_normals();
+    const auto faces = h.renderer.read_view_face_normals();
+    const size_t centre = static_cast<size_t>(32 * 64 + 32);
+    EXPECT_LT(glm::distance(normals[centre], expected), 2e-3f) << handedness;
+    EXPECT_LT(std::abs(std::abs(glm::dot(faces[centre], face)) - 1.0f), 1e-3f) << handedness;
+    EXPECT_GT(glm::distance(normals[centre], face), 0.3f) << handedness;
+  }
+}
+
+// The occlusion texture takes away environment light only: with it at 0 and no key light the
+// surface is black; the key light still reaches it.
+TEST_P(Shading, TheOcclusionTextureDarkensOnlyTheEnvironmentLight) {
+  const auto white = std::make_shared<const scene::Environment>(scene::uniform_environment(glm::vec3(0.5f)));
+  for (const float key : {0.0f, 1.0f}) {
+    scene::Scene built;
+    scene::Material material;
+    material.base_color = glm::vec4(1.0f);
+    material.metallic = 0.0f;
+    material.occlusion.texture = 0;
+    material.occlusion_strength = 1.0f;
+    built.textures = {texel(0, 0, 0)};
+    built.materials = {material};
+    scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 48, 0));
+    built.environment = white;
+    scene::update_bounds(built);
+    render::FrameSettings settings;
+    settings.width = settings.height = kSide;
+    settings.check_errors = true;
+    settings.ao = false;
+    settings.key_light = key;
+    Harness h;
+    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings));
+    const auto color = h.renderer.read_color();
+    const auto depth = h.renderer.read_linear_depth();
+    int brightest = 0;
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x)
+        if (depth[static_cast<size_t>((kSide - 1 - y) * kSide + x)] > 0.0f)
+          brightest = std::max(brightest, int(color[static_cast<size_t>((y * kSide + x) * 4)]));
+    if (key == 0.0f)
+      EXPECT_EQ(brightest, 0);
+    else
+      EXPECT_GT(brightest, 100);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, Shading, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace

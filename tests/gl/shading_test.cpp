@@ -25,8 +25,8 @@ struct Shot {
   std::vector<float> depth;
 };
 
-Shot sphere_under(const std::string& platform, const scene::Material& material, std::shared_ptr<const scene::Environment> environment,
-                  float key_light = 0.0f, bool ao = false) {
+Shot sphere_under(const std::string& platform, const scene::Material& material,
+                  std::shared_ptr<const scene::Environment> environment, float key_light = 0.0f, bool ao = false) {
   scene::Scene built;
   built.materials = {material};
   scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 48, 0));
@@ -71,9 +71,9 @@ TEST_P(Shading, WhiteFurnacesShadeToTheEnvironment) {
     const char* what;
     float metallic, roughness;
   };
-  for (const Case c : {Case{"white diffuse", 0.0f, 1.0f}, Case{"white diffuse, glossy", 0.0f, 0.3f},
-                       Case{"rough white metal", 1.0f, 1.0f}, Case{"half-rough white metal", 1.0f, 0.5f},
-                       Case{"polished white metal", 1.0f, 0.05f}}) {
+  for (const Case c :
+       {Case{"white diffuse", 0.0f, 1.0f}, Case{"white diffuse, glossy", 0.0f, 0.3f}, Case{"rough white metal", 1.0f, 1.0f},
+        Case{"half-rough white metal", 1.0f, 0.5f}, Case{"polished white metal", 1.0f, 0.05f}}) {
     scene::Material material;
     material.base_color = glm::vec4(1.0f);
     material.metallic = c.metallic;
@@ -135,8 +135,8 @@ TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
     const glm::dmat3 to_view(h.camera.view());
     const glm::vec3 m(204 / 255.0f * 2 - 1, 140 / 255.0f * 2 - 1, 230 / 255.0f * 2 - 1);
     const glm::vec3 bitangent = handedness * glm::cross(glm::vec3(0, 0, 1), glm::vec3(1, 0, 0));
-    const glm::vec3 expected = glm::normalize(glm::vec3(to_view * glm::dvec3(m.x * glm::vec3(1, 0, 0) + m.y * bitangent +
-                                                                               m.z * glm::vec3(0, 0, 1))));
+    const glm::vec3 expected =
+        glm::normalize(glm::vec3(to_view * glm::dvec3(m.x * glm::vec3(1, 0, 0) + m.y * bitangent + m.z * glm::vec3(0, 0, 1))));
     const glm::vec3 face = glm::normalize(glm::vec3(to_view * glm::dvec3(0, 0, 1)));
     const auto normals = h.renderer.read_view_normals();
     const auto faces = h.renderer.read_view_face_normals();

@@ -319,6 +319,9 @@ class Builder {
     const std::vector<glm::vec2> uvs = mapped_uvs(decoded, primitive, mappings.first, vertex_count, where, mappings.has_first);
     std::vector<glm::vec2> second_uvs;
     if (mappings.has_second) second_uvs = mapped_uvs(decoded, primitive, mappings.second, vertex_count, where, true);
+    // A set the primitive lacks is sampled at (0, 0), as the warning says; the stream must still be
+    // as long as the vertices (tangents may be generated from it).
+    if (mappings.has_second && second_uvs.empty()) second_uvs.assign(vertex_count, glm::vec2(0.0f));
     std::vector<glm::vec4> tangents;
     const bool wants_tangents = shown.normal.present() && !normals.empty();
     if (auto at = primitive.attributes.find("TANGENT"); wants_tangents && at != primitive.attributes.end()) {

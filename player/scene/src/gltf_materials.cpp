@@ -89,8 +89,7 @@ int MaterialReader::material(int index, const std::string& where) {
   material.metallic_roughness =
       slot(mr.index, mr.texCoord, info_of(pbr_json, "metallicRoughnessTexture"), pbr + ".metallicRoughnessTexture", false);
   const tinygltf::NormalTextureInfo& normal = source.normalTexture;
-  material.normal =
-      slot(normal.index, normal.texCoord, info_of(json_material, "normalTexture"), field + ".normalTexture", false);
+  material.normal = slot(normal.index, normal.texCoord, info_of(json_material, "normalTexture"), field + ".normalTexture", false);
   // A normal map that could not be decoded is drawn without (a white texel is no normal).
   if (material.normal.present() && material.normal.texture == white_) material.normal = TextureSlot{};
   if (!std::isfinite(normal.scale)) fail(field + ".normalTexture.scale: expected a finite number");
@@ -132,8 +131,7 @@ float MaterialReader::unit_factor(double value, const std::string& field) {
 // in glTF's UV space. Khronos' TextureTransformTest sample tells the direction: its arrows reach
 // the green markers (the red marker is the opposite rotation). texCoord, when given, replaces the
 // texture info's set.
-void MaterialReader::read_texture_transform(const nlohmann::json& extension, const std::string& field,
-                                            UvMapping& mapping) {
+void MaterialReader::read_texture_transform(const nlohmann::json& extension, const std::string& field, UvMapping& mapping) {
   if (!extension.is_object()) fail(field + ": expected an object");
   auto vec2 = [&](const char* key, glm::dvec2 fallback) {
     const auto found = extension.find(key);
@@ -186,8 +184,7 @@ int MaterialReader::texture(int index, const std::string& field, bool srgb) {
     const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(source.sampler)];
     texture.mag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::nearest : Filter::linear;
     // Absent or outside its list (the schema check warned), minFilter means the default: mipmapped.
-    texture.mipmaps =
-        sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+    texture.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
     texture.repeat_s = sampler.wrapS != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
     texture.repeat_t = sampler.wrapT != TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
   } else if (source.sampler >= 0) {

@@ -34,7 +34,6 @@ struct MaterialMappings {
   bool has_first = false, has_second = false;
 };
 
-
 class MaterialReader {
  public:
   // Adds glTF's default material to `scene` as its material 0.

@@ -19,6 +19,16 @@ double srgb_to_linear(int value) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
+// A 1x1 texture of one RGBA texel, as data (normals, occlusion) or colour.
+scene::Texture texel(uint8_t r, uint8_t g, uint8_t b, bool srgb = false) {
+  scene::Texture texture;
+  texture.width = texture.height = 1;
+  texture.rgba = {r, g, b, 255};
+  texture.mipmaps = false;
+  texture.srgb = srgb;
+  return texture;
+}
+
 // A sphere of one material under `environment`, lit by nothing else, without AO.
 struct Shot {
   std::vector<uint8_t> color;
@@ -26,16 +36,18 @@ struct Shot {
 };
 
 Shot sphere_under(const std::string& platform, const scene::Material& material,
-                  std::shared_ptr<const scene::Environment> environment, float key_light = 0.0f, bool ao = false) {
+                  std::shared_ptr<const scene::Environment> environment, float key_light = 0.0f,
+                  std::vector<scene::Texture> textures = {}) {
   scene::Scene built;
   built.materials = {material};
+  built.textures = std::move(textures);
   scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 48, 0));
   built.environment = std::move(environment);
   scene::update_bounds(built);
   render::FrameSettings settings;
   settings.width = settings.height = kSide;
   settings.check_errors = true;
-  settings.ao = ao;
+  settings.ao = false;
   settings.key_light = key_light;
   Harness h;
   EXPECT_TRUE(h.start(platform, std::move(built), settings));
@@ -99,16 +111,6 @@ TEST_P(Shading, EmissionIsAddedAsItIs) {
   EXPECT_EQ(worst_relative_error(dark, 1.0), 1.0);  // every channel 0: relative error exactly 1
 }
 
-// A 1x1 texture of one RGBA texel, as data (normals, occlusion) or colour.
-scene::Texture texel(uint8_t r, uint8_t g, uint8_t b, bool srgb = false) {
-  scene::Texture texture;
-  texture.width = texture.height = 1;
-  texture.rgba = {r, g, b, 255};
-  texture.mipmaps = false;
-  texture.srgb = srgb;
-  return texture;
-}
-
 // A normal map turns the shading normal in the frame of the mesh's tangents (MikkTSpace: bitangent
 // = w * cross(normal, tangent)); the face's plane, which the horizon estimator reads, stays.
 TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
@@ -152,26 +154,14 @@ TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
 TEST_P(Shading, TheOcclusionTextureDarkensOnlyTheEnvironmentLight) {
   const auto white = std::make_shared<const scene::Environment>(scene::uniform_environment(glm::vec3(0.5f)));
   for (const float key : {0.0f, 1.0f}) {
-    scene::Scene built;
     scene::Material material;
     material.base_color = glm::vec4(1.0f);
     material.metallic = 0.0f;
     material.occlusion.texture = 0;
     material.occlusion_strength = 1.0f;
-    built.textures = {texel(0, 0, 0)};
-    built.materials = {material};
-    scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 48, 0));
-    built.environment = white;
-    scene::update_bounds(built);
-    render::FrameSettings settings;
-    settings.width = settings.height = kSide;
-    settings.check_errors = true;
-    settings.ao = false;
-    settings.key_light = key;
-    Harness h;
-    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings));
-    const auto color = h.renderer.read_color();
-    const auto depth = h.renderer.read_linear_depth();
+    const Shot shot = sphere_under(GetParam(), material, white, key, {texel(0, 0, 0)});
+    const auto& color = shot.color;
+    const auto& depth = shot.depth;
     int brightest = 0;
     for (int y = 0; y < kSide; ++y)
       for (int x = 0; x < kSide; ++x)

@@ -33,6 +33,7 @@ uniform highp sampler2D u_metallic_roughness_texture;
 #endif
 #ifdef HAS_NORMAL_TEXTURE
 uniform highp sampler2D u_normal_texture;
+uniform float u_frame_handedness;  // -1 where the model-view mirrors
 #endif
 #ifdef HAS_OCCLUSION_TEXTURE
 uniform highp sampler2D u_occlusion_texture;
@@ -97,10 +98,16 @@ void main() {
   if (!gl_FrontFacing) n = -n;
 #ifdef HAS_NORMAL_TEXTURE
   {
-    // MikkTSpace's reading: the interpolated tangent and normal as they are, the bitangent from their
-    // cross product and the tangent's sign; a back face turns its whole frame.
-    vec3 t = v_view_tangent.xyz;
-    vec3 b = v_view_tangent.w * cross(v_view_normal, t);
+    // MikkTSpace's frame: the bitangent from the normal, the tangent and its sign. Both vectors are
+    // renormalised and the tangent made orthogonal again, since a scaled node lengthens the tangent
+    // and shortens the normal (a model exported in centimetres would lose its map's x); a mirroring
+    // node turns the cross product round, u_frame_handedness turns it back. A back face turns the
+    // whole frame.
+    vec3 geometric = len > 1e-20 ? v_view_normal / len : vec3(0.0, 0.0, 1.0);
+    vec3 t = v_view_tangent.xyz - geometric * dot(geometric, v_view_tangent.xyz);
+    float t_length = length(t);
+    t = t_length > 1e-20 ? t / t_length : normalize(cross(geometric, abs(geometric.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    vec3 b = (v_view_tangent.w < 0.0 ? -u_frame_handedness : u_frame_handedness) * cross(geometric, t);
     if (!gl_FrontFacing) {
       t = -t;
       b = -b;

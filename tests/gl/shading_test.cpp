@@ -112,9 +112,18 @@ TEST_P(Shading, EmissionIsAddedAsItIs) {
 }
 
 // A normal map turns the shading normal in the frame of the mesh's tangents (MikkTSpace: bitangent
-// = w * cross(normal, tangent)); the face's plane, which the horizon estimator reads, stays.
+// = w * cross(normal, tangent)); the face's plane, which the horizon estimator reads, stays. The
+// frame is the same whatever the node's scale (a model in centimetres, a stretched one) and follows
+// a mirroring node, whose faces stay front faces.
 TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
-  for (const float handedness : {1.0f, -1.0f}) {
+  struct Case {
+    const char* what;
+    float handedness;
+    glm::dvec3 scale;
+  };
+  for (const Case c : {Case{"right-handed", 1.0f, {1, 1, 1}}, Case{"left-handed", -1.0f, {1, 1, 1}},
+                       Case{"in centimetres", 1.0f, {0.01, 0.01, 0.01}}, Case{"stretched", -1.0f, {3, 1, 0.5}},
+                       Case{"mirrored", 1.0f, {-1, 1, 1}}, Case{"mirrored, left-handed", -1.0f, {1, -2, 1}}}) {
     scene::Scene built;
     scene::Material material;
     material.normal.texture = 0;
@@ -122,8 +131,9 @@ TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
     built.textures = {texel(204, 140, 230)};
     built.materials = {material};
     scene::Mesh quad = scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);  // normal +z
-    quad.tangents.assign(quad.vertices.size(), glm::vec4(1, 0, 0, handedness));
-    scene::add_instance(built, std::move(quad));
+    quad.tangents.assign(quad.vertices.size(), glm::vec4(1, 0, 0, c.handedness));
+    const glm::dmat3 linear(glm::dvec3(c.scale.x, 0, 0), glm::dvec3(0, c.scale.y, 0), glm::dvec3(0, 0, c.scale.z));
+    scene::add_instance(built, std::move(quad), glm::dmat4(linear));
     scene::update_bounds(built);
     render::FrameSettings settings;
     settings.width = settings.height = 64;
@@ -132,20 +142,23 @@ TEST_P(Shading, ANormalMapTurnsTheShadingNormalNotTheFace) {
     scene::Framing head_on;
     head_on.azimuth_deg = 0.0;
     head_on.elevation_deg = 0.0;
-    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on));
+    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, head_on)) << c.what;
     EXPECT_EQ(h.renderer.gl_error(), "");
+    // The frame as the node carries it: the tangent with the node, the normal with its inverse
+    // transpose, the bitangent the object's own, carried by the node too.
+    const glm::dvec3 tangent = glm::normalize(linear * glm::dvec3(1, 0, 0));
+    const glm::dvec3 normal = glm::normalize(glm::transpose(glm::inverse(linear)) * glm::dvec3(0, 0, 1));
+    const glm::dvec3 bitangent = glm::normalize(linear * (double(c.handedness) * glm::dvec3(0, 1, 0)));
     const glm::dmat3 to_view(h.camera.view());
-    const glm::vec3 m(204 / 255.0f * 2 - 1, 140 / 255.0f * 2 - 1, 230 / 255.0f * 2 - 1);
-    const glm::vec3 bitangent = handedness * glm::cross(glm::vec3(0, 0, 1), glm::vec3(1, 0, 0));
-    const glm::vec3 expected =
-        glm::normalize(glm::vec3(to_view * glm::dvec3(m.x * glm::vec3(1, 0, 0) + m.y * bitangent + m.z * glm::vec3(0, 0, 1))));
-    const glm::vec3 face = glm::normalize(glm::vec3(to_view * glm::dvec3(0, 0, 1)));
+    const glm::dvec3 m(204 / 255.0 * 2 - 1, 140 / 255.0 * 2 - 1, 230 / 255.0 * 2 - 1);
+    const glm::vec3 expected(glm::normalize(to_view * (m.x * tangent + m.y * bitangent + m.z * normal)));
+    const glm::vec3 face(glm::normalize(to_view * normal));
     const auto normals = h.renderer.read_view_normals();
     const auto faces = h.renderer.read_view_face_normals();
     const size_t centre = static_cast<size_t>(32 * 64 + 32);
-    EXPECT_LT(glm::distance(normals[centre], expected), 2e-3f) << handedness;
-    EXPECT_LT(std::abs(std::abs(glm::dot(faces[centre], face)) - 1.0f), 1e-3f) << handedness;
-    EXPECT_GT(glm::distance(normals[centre], face), 0.3f) << handedness;
+    EXPECT_LT(glm::distance(normals[centre], expected), 2e-3f) << c.what;
+    EXPECT_LT(std::abs(std::abs(glm::dot(faces[centre], face)) - 1.0f), 1e-3f) << c.what;
+    EXPECT_GT(glm::distance(normals[centre], face), 0.3f) << c.what;
   }
 }
 

@@ -214,8 +214,9 @@ TEST_F(GltfMaterial, TheFilesTangentsAreKeptNormalised) {
   for (const glm::vec4& t : mesh.tangents) EXPECT_EQ(t, glm::vec4(0, 1, 0, -1));
 }
 
-// Generated tangents follow the UVs: on a quad whose u runs along +x and v along -y, the tangent is
-// +x and the bitangent (w * cross(n, t)) is -y.
+// Generated tangents follow the UVs as glTF reads them: on a quad whose u runs along +x and v along
+// -y (the image upright, v down it), the tangent is +x and the bitangent (w * cross(n, t)) +y, up
+// the image, where a normal map's green channel points.
 TEST(Tangents, FollowTheTextureDirections) {
   scene::Mesh mesh;
   mesh.vertices = {{{0, 0, 0}, {0, 0, 1}, {0, 1}},
@@ -228,7 +229,7 @@ TEST(Tangents, FollowTheTextureDirections) {
   for (const glm::vec4& t : mesh.tangents) {
     EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
     const glm::vec3 bitangent = t.w * glm::cross(glm::vec3(0, 0, 1), glm::vec3(t));
-    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
   }
   // Mirrored in u: the tangent turns round, the bitangent stays.
   for (scene::Vertex& v : mesh.vertices) v.uv.x = 1.0f - v.uv.x;
@@ -236,7 +237,7 @@ TEST(Tangents, FollowTheTextureDirections) {
   for (const glm::vec4& t : mesh.tangents) {
     EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
     const glm::vec3 bitangent = t.w * glm::cross(glm::vec3(0, 0, 1), glm::vec3(t));
-    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(bitangent, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
   }
   // No UV area at all: still a unit vector in the surface, never NaN.
   for (scene::Vertex& v : mesh.vertices) v.uv = glm::vec2(0.5f);

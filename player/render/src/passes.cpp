@@ -82,7 +82,11 @@ void draw_scene(const PassContext& context, bool depth_only) {
     const glm::dmat4 model_view_d = context.view.view * draw.world;
     const glm::mat4 model_view(model_view_d);
     gl::api.UniformMatrix4fv(program->model_view, 1, GL_FALSE, glm::value_ptr(model_view));
+    // A mirroring transform turns the winding round (glTF: the determinant decides which side is front).
+    const bool mirrored = glm::determinant(glm::dmat3(model_view_d)) < 0.0;
+    gl::api.FrontFace(mirrored ? GL_CW : GL_CCW);
     if (!depth_only) {
+      gl::api.Uniform1f(program->frame_handedness, mirrored ? -1.0f : 1.0f);
       const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
       gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
       gl::api.Uniform1f(program->lit, material.unlit ? 0.0f : 1.0f);
@@ -114,6 +118,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
   }
   gl::api.BindVertexArray(0);
   gl::api.ActiveTexture(GL_TEXTURE0);
+  gl::api.FrontFace(GL_CCW);
 }
 
 void begin_raster(const PassContext& context) {

@@ -44,6 +44,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.lit = gl::uniform(*out.program, "u_lit");
   out.material = gl::uniform(*out.program, "u_material");
   out.emissive = gl::uniform(*out.program, "u_emissive");
+  out.frame_handedness = gl::uniform(*out.program, "u_frame_handedness");
   gl::api.UseProgram(out.program->id());
   const std::pair<const char*, int> samplers[] = {{"u_base_color_texture", unit_base_color},
                                                   {"u_metallic_roughness_texture", unit_metallic_roughness},

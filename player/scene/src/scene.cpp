@@ -79,7 +79,9 @@ void generate_tangents(Mesh& mesh, bool from_uv1) {
       if (!(length > 1e-12)) continue;  // a zero normal: the shader faces it to the eye anyway
     }
     t /= length;
-    const double handedness = glm::dot(glm::cross(n, t), bitangent[i]) < 0.0 ? -1.0 : 1.0;
+    // glTF's v runs down the image while a normal map's +Y points up it: the bitangent the shader
+    // rebuilds as w * cross(n, t) must follow -dP/dv, as the Khronos sample viewer's does.
+    const double handedness = glm::dot(glm::cross(n, t), bitangent[i]) > 0.0 ? -1.0 : 1.0;
     mesh.tangents[i] = glm::vec4(glm::vec3(t), static_cast<float>(handedness));
   }
 }

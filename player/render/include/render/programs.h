@@ -17,7 +17,7 @@ namespace render {
 struct RasterProgram {
   const gl::Program* program = nullptr;
   GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1, lit = -1;
-  GLint material = -1, emissive = -1;
+  GLint material = -1, emissive = -1, frame_handedness = -1;
 };
 
 // What a material asks of the G-buffer program (gbuffer.frag's variants), as bits.

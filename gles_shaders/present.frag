@@ -92,9 +92,11 @@ void main() {
   highp uvec2 packed_material = texelFetch(u_material, pixel, 0).xy;
   vec4 material = unpackUnorm4x8(packed_material.x);  // roughness, metallic, occlusion
   vec3 view_position = view_position_at(pixel, depth, composite.unproject, ivec2(composite.full_width, composite.full_height));
-  SurfacePoint s = surface_point(surface.rgb, material.y, material.x, normal, -normalize(view_position));
+  vec3 to_viewer = composite.viewer_straight_ahead != 0 ? vec3(0.0, 0.0, 1.0) : -normalize(view_position);
+  SurfacePoint s = surface_point(surface.rgb, material.y, material.x, normal, to_viewer);
+  // Normalised in world space: a light field's view space is physical space, scaled from the world.
   mat3 to_world = mat3(composite.view_to_world);
-  vec3 irradiance = sh_irradiance(composite.irradiance, to_world * normal) * composite.environment_intensity;
+  vec3 irradiance = sh_irradiance(composite.irradiance, normalize(to_world * normal)) * composite.environment_intensity;
   vec3 prefiltered = textureLod(u_specular, to_world * reflect(-s.v, normal), s.roughness * composite.specular_max_level).rgb *
                      composite.environment_intensity;
   vec3 environment_diffuse, environment_specular;

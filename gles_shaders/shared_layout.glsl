@@ -118,6 +118,11 @@ struct CompositeParams {
   float ao_strength;            // the power on 1 - AO in the shaded image (1: as computed)
   float plane_tolerance;        // of upsample.glsl (0: depth alone)
   float environment_intensity;  // scales the environment's light
+  int viewer_straight_ahead;    // 1: each pixel seen along +z (light field modules: the viewer on the
+                                // observer line in front of it), 0: from the centre of projection
+  int unused_0;
+  int unused_1;
+  int unused_2;
 };
 
 // Temporal accumulation of the AO (temporal.comp): the previous frame's accumulated AO is found by

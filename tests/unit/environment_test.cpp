@@ -1,6 +1,7 @@
 // Image-based lighting's CPU side (player/scene/include/scene/environment.h): the conventions it
 // documents, its integrals against brute force, and the files it refuses.
 #include "scene/environment.h"
+#include "scene/load.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -287,6 +288,21 @@ TEST(Environment, PrefilteringALargeImageKeepsItsMeanRadiance) {
       EXPECT_LT(scene::sample_specular(env, d, roughness).r, at_sun) << "roughness " << roughness;
     }
   }
+}
+
+// The studio by spec (an item naming none, or builtin:studio) is the process's one studio, prepared
+// by whoever asks first (the loader's thread), so the renderer only uploads it.
+TEST(Environment, TheStudioBySpecIsTheSharedStudio) {
+  for (const std::string spec : {"", "builtin:studio"}) {
+    std::shared_ptr<const scene::Environment> out;
+    std::string error;
+    ASSERT_TRUE(scene::load_environment_spec(spec, out, error)) << error;
+    EXPECT_EQ(out.get(), &scene::studio_environment()) << spec;
+  }
+  std::shared_ptr<const scene::Environment> out;
+  std::string error;
+  EXPECT_FALSE(scene::load_environment_spec("builtin:sunset", out, error));
+  EXPECT_NE(error.find("builtin:sunset: no such built-in environment (expected builtin:studio)"), std::string::npos) << error;
 }
 
 TEST(Environment, StudioIsNeutralBrighterAboveThanBelow) {

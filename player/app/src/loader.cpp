@@ -71,9 +71,11 @@ bool Loader::environment(const std::string& spec, std::shared_ptr<const scene::E
   const std::string version = ec ? spec
                                  : spec + "@" + std::to_string(stamp.time_since_epoch().count()) + "/" +
                                        std::to_string(std::filesystem::file_size(spec, ec));
+  // Held weakly: an environment no loaded scene uses any more is freed, not kept for the process.
+  std::erase_if(environments_, [](const auto& entry) { return entry.second.expired(); });
   if (const auto found = environments_.find(version); found != environments_.end()) {
-    out = found->second;
-    return true;
+    out = found->second.lock();
+    if (out) return true;
   }
   if (!scene::load_environment_spec(spec, out, error)) return false;
   if (!ec) environments_[version] = out;

@@ -85,7 +85,7 @@ class Loader {
   playback::ParseOptions playlist_options_;
   scene::LoadOptions scene_options_;  // guarded by mutex_
   // The loader thread's own: environments prepared so far, by path and file version.
-  std::map<std::string, std::shared_ptr<const scene::Environment>> environments_;
+  std::map<std::string, std::weak_ptr<const scene::Environment>> environments_;
   bool environment(const std::string& spec, std::shared_ptr<const scene::Environment>& out, std::string& error);
   base::UniqueFd wake_;
   mutable std::mutex mutex_;

@@ -104,7 +104,7 @@ bool Programs::build(gl::Session& session, std::string& error) {
   gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white_texel);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl::api.BindTexture(GL_TEXTURE_2D, 0);
 
   // The split-sum table: small, and the same for every scene, so made once per context.
@@ -115,12 +115,13 @@ bool Programs::build(gl::Session& session, std::string& error) {
   for (const glm::vec2& entry : lut) texels.insert(texels.end(), {entry.x, entry.y});
   brdf_lut = gl::make_texture();
   gl::api.BindTexture(GL_TEXTURE_2D, brdf_lut.id());
-  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, kLutSize, kLutSize);
+  // Half floats filter everywhere ES 3.0 runs (32-bit ones only with OES_texture_float_linear), and
+  // the table needs filtering: its nearest entry of 32 is up to 0.05 off the interpolated value at
+  // low roughness, a visible step on a polished sphere; half precision keeps 1e-3 of the [0, 1] range.
+  gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RG16F, kLutSize, kLutSize);
   gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kLutSize, kLutSize, GL_RG, GL_FLOAT, texels.data());
-  // 32-bit float textures filter only with OES_texture_float_linear; the table is smooth enough
-  // that the nearest entry of 32 is within 0.01 of the interpolated one, so nearest is kept portable.
-  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   gl::api.BindTexture(GL_TEXTURE_2D, 0);

@@ -50,6 +50,10 @@ shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets,
   for (size_t i = 0; i < environment.irradiance.size(); ++i) params.irradiance[i] = environment.irradiance[i];
   params.specular_max_level = static_cast<float>(std::max(environment.levels - 1, 0));
   params.environment_intensity = settings.environment_intensity;
+  // A module's pixels are seen from wherever its ray meets the observer line; straight ahead is
+  // what a horizontal-parallax display's viewer sees on average, and stays the same from module to
+  // module, so highlights do not flicker across the views.
+  params.viewer_straight_ahead = view.module.has_value() ? 1 : 0;
   params.background = glm::vec4(settings.background, 1.0f);
   // From this view's projection, not the SSAO block's: that one is only refreshed when AO runs,
   // and the shading's view vector needs it every frame.

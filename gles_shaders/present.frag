@@ -3,8 +3,8 @@
 // metallic-roughness (pbr.glsl) under the environment (prefiltered cube map, spherical-harmonic
 // irradiance, split-sum table) and the key light, plus emission. The SSAO term occludes only the
 // environment light: its diffuse part by the visibility, its specular part by the specular
-// occlusion derived from it; the key light stands for a light with a shadow of its own that
-// screen-space AO does not know. A material's occlusion texture joins the SSAO visibility by min(),
+// occlusion derived from it; the key light, or the scene's own lights (KHR_lights_punctual) in its
+// place, stand for lights with shadows of their own that screen-space AO does not know. A material's occlusion texture joins the SSAO visibility by min(),
 // not a product: a baked occlusion map and SSAO see the same creases, and a product would darken
 // them twice (Filament and Frostbite combine them alike).
 // ENCODE_SRGB: the framebuffer stores what it is given, so the shader encodes; otherwise the
@@ -19,6 +19,7 @@
 #include "pbr.glsl"
 
 layout(std140, binding = BINDING_COMPOSITE_PARAMS) uniform CompositeBlock { CompositeParams composite; };
+layout(std140, binding = BINDING_LIGHT_PARAMS) uniform LightBlock { LightParams lights; };
 uniform highp sampler2D u_albedo;
 uniform highp sampler2D u_normal;
 uniform highp sampler2D u_linear_depth;
@@ -107,6 +108,27 @@ void main() {
   float visibility = min(pow(max(1.0 - ao, 0.0), composite.ao_strength), material.z);
   vec3 color = environment_diffuse * visibility + environment_specular * specular_occlusion(s.nv, visibility, s.roughness);
   color += punctual_light(s, composite.light_direction.xyz, composite.light_color.rgb);
+  if (lights.count > 0) {
+    highp vec3 world_position = (composite.view_to_world * vec4(view_position, 1.0)).xyz;
+    // World to view for directions: the view's rotation and a uniform scale (a module's), which
+    // the normalisation removes.
+    mat3 to_view = transpose(to_world);
+    for (int i = 0; i < lights.count; ++i) {
+      highp vec4 position = lights.position[i];
+      highp vec3 to_light = position.xyz;
+      highp float falloff = 1.0;
+      if (lights.color[i].a > 0.0) {
+        to_light -= world_position;
+        highp float distance_squared = max(dot(to_light, to_light), 1e-8);
+        to_light *= inversesqrt(distance_squared);
+        // KHR_lights_punctual's range window: inverse square, brought smoothly to 0 at the range.
+        highp float window = clamp(1.0 - distance_squared * distance_squared * position.w * position.w, 0.0, 1.0);
+        highp float cone = clamp(dot(lights.axis[i].xyz, -to_light) * lights.cone[i].x + lights.cone[i].y, 0.0, 1.0);
+        falloff = window / distance_squared * cone * cone;
+      }
+      color += punctual_light(s, normalize(to_view * to_light), lights.color[i].rgb * falloff);
+    }
+  }
   color += unpack_rgb9e5(packed_material.y);
   fragment = shaded(color * fade);
 #endif

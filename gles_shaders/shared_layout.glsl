@@ -26,6 +26,10 @@
 #define BINDING_UPSAMPLE_PARAMS 3
 #define BINDING_MODULE_PARAMS 4
 #define BINDING_TEMPORAL_PARAMS 5
+#define BINDING_LIGHT_PARAMS 6
+
+// The file's own lights (KHR_lights_punctual) the present pass shades; scene::kMaxLights alike.
+#define MAX_LIGHTS 8
 
 // Temporal accumulation: while the camera moves, history is trusted for at most this many frames,
 // so a surface sliding across the screen carries at most that much resampled past with it.
@@ -120,6 +124,22 @@ struct CompositeParams {
   float environment_intensity;  // scales the environment's light
   int viewer_straight_ahead;    // 1: each pixel seen along +z (light field modules: the viewer on the
                                 // observer line in front of it), 0: from the centre of projection
+  int unused_0;
+  int unused_1;
+  int unused_2;
+};
+
+// The scene's own lights (scene::Light), in world space: the present pass shades in world space
+// so a light field module, whose view space is physical space scaled from the world, sees the same
+// falloff as a 2D view. Uploaded once per scene; count 0 leaves the key light of CompositeParams.
+struct LightParams {
+  vec4 color[MAX_LIGHTS];     // rgb: linear colour times intensity; a: 0 directional, 1 point or spot
+  vec4 position[MAX_LIGHTS];  // xyz: the light's position, or (directional) the direction towards it;
+                              // w: 1 / range^2 (0: unbounded)
+  vec4 axis[MAX_LIGHTS];      // xyz: where a spot light shines (unit)
+  vec4 cone[MAX_LIGHTS];      // x, y: glTF's angle scale and offset (1 / (cos inner - cos outer),
+                              // -cos outer * scale); 0, 1 for a light without a cone
+  int count;
   int unused_0;
   int unused_1;
   int unused_2;

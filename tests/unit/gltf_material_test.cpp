@@ -287,6 +287,111 @@ TEST_F(GltfMaterial, CamerasComeWithTheirNodesWorldTransform) {
   EXPECT_NE(error_of(write(doc)).find("cameras[0].perspective.zfar"), std::string::npos);
 }
 
+// KHR_lights_punctual: lights are placed by their nodes' world transforms (a spot and a directional
+// light shine along the node's -Z), colour times intensity, glTF's defaults where a value is
+// absent; what the extension forbids is refused by field, an unknown type left out with a warning.
+TEST_F(GltfMaterial, LightsComeWithTheirNodesWorldTransform) {
+  json doc = triangle();
+  doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 4.0}, {"range", 10.0}},
+      {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.4}}}},
+      {{"type", "directional"}, {"intensity", 2.0}},
+      {{"type", "area"}}};
+  // Node 1 turns a quarter about +Y: its -Z points along -X.
+  const double s = std::sqrt(0.5);
+  doc["nodes"] = {{{"mesh", 0}},
+                  {{"translation", {0, 2, 0}}, {"rotation", {0, s, 0, s}}, {"children", {2, 3}}},
+                  {{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}, {"translation", {0, 0, -1}}},
+                  {{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}},
+                  {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {3, 0, 0}}},
+                  {{"extensions", {{"KHR_lights_punctual", {{"light", 3}}}}}}};
+  doc["scenes"][0]["nodes"] = {0, 1, 4, 5};
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  EXPECT_EQ(report.warnings, std::vector<std::string>{"extensions.KHR_lights_punctual.lights[3].type: \"area\" is not a "
+                                                      "light type this player knows; the light is left out"});
+  ASSERT_EQ(out.lights.size(), 3u);  // in node order: the spot, the directional, the point light
+  const scene::Light& spot = out.lights[0];
+  EXPECT_EQ(spot.type, scene::Light::Type::spot);
+  EXPECT_EQ(spot.node, 2);
+  // The child's -1 along its parent's Z, turned a quarter about Y: -1 along world X, 2 up.
+  EXPECT_NEAR(glm::distance(spot.position, glm::dvec3(-1, 2, 0)), 0.0, 1e-12);
+  EXPECT_NEAR(glm::distance(spot.direction, glm::dvec3(-1, 0, 0)), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(spot.inner_cone, 0.1);
+  EXPECT_DOUBLE_EQ(spot.outer_cone, 0.4);
+  EXPECT_EQ(spot.color, glm::vec3(1.0f));
+  EXPECT_EQ(spot.range, 0.0);
+  const scene::Light& directional = out.lights[1];
+  EXPECT_EQ(directional.type, scene::Light::Type::directional);
+  EXPECT_NEAR(glm::distance(directional.direction, glm::dvec3(-1, 0, 0)), 0.0, 1e-12);
+  EXPECT_EQ(directional.color, glm::vec3(2.0f));
+  const scene::Light& point = out.lights[2];
+  EXPECT_EQ(point.type, scene::Light::Type::point);
+  EXPECT_EQ(point.position, glm::dvec3(3, 0, 0));
+  EXPECT_EQ(point.color, glm::vec3(4.0f, 2.0f, 1.0f));
+  EXPECT_EQ(point.range, 10.0);
+  // A spot's defaults: inner 0, outer pi/4.
+  doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = json::object();
+  EXPECT_DOUBLE_EQ(load_ok(write(doc)).lights.at(0).outer_cone, 0.7853981633974483);
+
+  auto refused = [&](json changed, const std::string& expected) {
+    const std::string error = error_of(write(changed));
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  };
+  json bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.4}};
+  refused(bad,
+          "extensions.KHR_lights_punctual.lights[1].spot: innerConeAngle 0.500000 and outerConeAngle 0.400000; "
+          "expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
+  bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][1].erase("spot");
+  refused(bad, "lights[1].spot: a spot light requires its cone");
+  bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -1;
+  refused(bad, "lights[0].intensity: -1.000000; expected a number >= 0");
+  bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 0;
+  refused(bad, "lights[0].range: 0.000000; expected a number > 0");
+  bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][0]["color"] = {1, 2, 0};
+  refused(bad, "lights[0].color[1]: expected a number in [0, 1]");
+  bad = doc;
+  bad["extensions"]["KHR_lights_punctual"]["lights"][0].erase("type");
+  refused(bad, "lights[0].type: expected \"directional\", \"point\" or \"spot\"");
+  bad = doc;
+  bad["nodes"][4]["extensions"]["KHR_lights_punctual"]["light"] = 7;
+  refused(bad, "nodes[4].extensions.KHR_lights_punctual.light: 7 out of range (there are 4)");
+  bad = doc;
+  bad["extensions"].erase("KHR_lights_punctual");
+  refused(bad, "nodes[2].extensions.KHR_lights_punctual.light: the file defines no lights");
+  // A node scaled to nothing hides its spot (animations do this): left out with a warning.
+  json hidden = doc;
+  hidden["nodes"][2]["scale"] = {0, 0, 0};
+  scene::Scene shown;
+  ASSERT_TRUE(scene::load_gltf(write(hidden), shown, report)) << report.error;
+  EXPECT_EQ(shown.lights.size(), 2u);
+  EXPECT_NE(report.warnings.back().find("nodes[2]: the transform leaves its light no direction"), std::string::npos);
+}
+
+// More lights than the renderer shades: the first kMaxLights in node order, and one warning.
+TEST_F(GltfMaterial, LightsBeyondTheRenderersRoomAreLeftOutWithOneWarning) {
+  json doc = triangle();
+  doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}}};
+  for (int i = 0; i < 12; ++i) {
+    doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {i, 0, 0}}});
+    doc["scenes"][0]["nodes"].push_back(i + 1);
+  }
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  ASSERT_EQ(out.lights.size(), scene::kMaxLights);
+  EXPECT_EQ(out.lights.back().position, glm::dvec3(scene::kMaxLights - 1, 0, 0));
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("more than 8 lights; the first 8 in node order are shown"), std::string::npos);
+}
+
 TEST_F(GltfMaterial, AlphaModesAndCutoffs) {
   json doc = textured(0);
   scene::Scene loaded = load_ok(write(doc));

@@ -305,7 +305,7 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   const FrameSettings& settings = targets.settings();
   const View& view = context.view;
   const shared_layout::CompositeParams composite =
-      pack_composite_params(targets, view, {target.x, target.y}, fade, context.scene.environment());
+      pack_composite_params(targets, view, {target.x, target.y}, fade, context.scene);
   detail::update_uniform_buffer(targets.composite_ubo, &composite, sizeof composite);
   targets.last_inverse_far = composite.inverse_far;
 
@@ -315,6 +315,7 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   gl::api.Disable(GL_CULL_FACE);
   gl::api.UseProgram(targets.present_program->id());  // chosen for target.srgb at configure
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_COMPOSITE_PARAMS, targets.composite_ubo.id());
+  gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_LIGHT_PARAMS, context.scene.lights().id());
   bind_texture(0, targets.albedo);
   bind_texture(1, targets.normal);
   bind_texture(2, targets.linear_depth);

@@ -104,7 +104,7 @@ bool Programs::build(gl::Session& session, std::string& error) {
   gl::api.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white_texel);
   gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl::api.BindTexture(GL_TEXTURE_2D, 0);
 
   // The split-sum table: small, and the same for every scene, so made once per context.

@@ -1,6 +1,9 @@
 #include "render/scene_gpu.h"
 
 #include "render/programs.h"
+#include "render/uniform_blocks.h"
+
+#include "gl_util.h"
 #include "scene/environment.h"
 
 #include <algorithm>
@@ -202,6 +205,9 @@ void SceneGpu::upload_environment() {
 void SceneGpu::finish() {
   upload_environment();
   const scene::Scene& scene = *source_;
+  const shared_layout::LightParams lights = pack_light_params(scene.lights);
+  lights_ = detail::make_uniform_buffer(&lights, sizeof lights);
+  light_count_ = lights.count;
   for (const scene::Instance& instance : scene.instances)
     draws_.push_back({instance.mesh, scene.meshes[static_cast<size_t>(instance.mesh)].material, instance.world});
   // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).

@@ -1,6 +1,7 @@
 #include "render/uniform_blocks.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace render {
 namespace {
@@ -41,11 +42,13 @@ shared_layout::TemporalParams pack_temporal_params(const ViewTargets& targets, c
 }
 
 shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets, const View& view, glm::ivec2 viewport,
-                                                     float fade, const EnvironmentGpu& environment) {
+                                                     float fade, const SceneGpu& scene) {
   const FrameSettings& settings = targets.settings();
+  const EnvironmentGpu& environment = scene.environment();
   shared_layout::CompositeParams params{};
   params.light_direction = glm::vec4(kLightDirection, 0.0f);
-  params.light_color = glm::vec4(glm::vec3(settings.key_light), 0.0f);
+  // A scene that brings its own lights was lit by its author: the player's light would add to it.
+  params.light_color = glm::vec4(glm::vec3(scene.light_count() > 0 ? 0.0f : settings.key_light), 0.0f);
   params.view_to_world = glm::mat4(glm::inverse(view.view));
   for (size_t i = 0; i < environment.irradiance.size(); ++i) params.irradiance[i] = environment.irradiance[i];
   params.specular_max_level = static_cast<float>(std::max(environment.levels - 1, 0));
@@ -73,6 +76,31 @@ shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets,
   params.fade = fade;
   params.ao_strength = settings.ao_strength;
   params.plane_tolerance = targets.upsample_plane_tolerance();
+  return params;
+}
+
+shared_layout::LightParams pack_light_params(const std::vector<scene::Light>& lights) {
+  static_assert(MAX_LIGHTS == scene::kMaxLights);
+  shared_layout::LightParams params{};
+  for (const scene::Light& light : lights) {
+    if (params.count == MAX_LIGHTS) break;
+    const size_t i = static_cast<size_t>(params.count++);
+    const bool positioned = light.type != scene::Light::Type::directional;
+    params.color[i] = glm::vec4(light.color, positioned ? 1.0f : 0.0f);
+    const glm::dvec3 position = positioned ? light.position : -light.direction;
+    params.position[i] =
+        glm::vec4(glm::vec3(position), light.range > 0.0 ? static_cast<float>(1.0 / (light.range * light.range)) : 0.0f);
+    params.axis[i] = glm::vec4(glm::vec3(light.direction), 0.0f);
+    if (light.type == scene::Light::Type::spot) {
+      // glTF's spot falloff (KHR_lights_punctual, "Inner and Outer Cone Angles"); the cone's cosines
+      // differ by at least the loader's inner < outer, floored so the scale stays finite.
+      const double cos_outer = std::cos(light.outer_cone);
+      const double scale = 1.0 / std::max(0.001, std::cos(light.inner_cone) - cos_outer);
+      params.cone[i] = glm::vec4(static_cast<float>(scale), static_cast<float>(-cos_outer * scale), 0.0f, 0.0f);
+    } else {
+      params.cone[i] = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+    }
+  }
   return params;
 }
 

@@ -3,6 +3,7 @@
 #include "gltf_accessors.h"
 #include "gltf_document.h"
 #include "gltf_draco.h"
+#include "gltf_lights.h"
 #include "gltf_materials.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -24,15 +25,14 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT, kByte = TINYGLTF_COMPONENT
               kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 
 // Extensions whose content the player reads; any of them may be listed in extensionsRequired.
-const std::set<std::string> kSupportedExtensions = {"KHR_mesh_quantization",      "EXT_meshopt_compression",
-                                                    "KHR_draco_mesh_compression", "KHR_texture_transform",
-                                                    "KHR_materials_unlit",        "KHR_materials_emissive_strength"};
+const std::set<std::string> kSupportedExtensions = {
+    "KHR_mesh_quantization", "EXT_meshopt_compression",         "KHR_draco_mesh_compression", "KHR_texture_transform",
+    "KHR_materials_unlit",   "KHR_materials_emissive_strength", "KHR_lights_punctual"};
 
 // What a scene using an extension the player does not read shows instead.
 std::string shown_instead(const std::string& extension) {
   if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp" || extension == "MSFT_texture_dds")
     return "textures whose only source is in that format are drawn white";
-  if (extension == "KHR_lights_punctual") return "the scene is lit by the player's own light";
   if (extension.rfind("KHR_materials_", 0) == 0) return "materials show their core glTF properties";
   return "the file's core glTF content is shown";
 }
@@ -58,8 +58,9 @@ std::vector<Format> texcoord_formats(bool quantized) {
 
 class Builder {
  public:
-  Builder(Document& document, LoadReport& report)
+  Builder(Document& document, const LightReader& lights, LoadReport& report)
       : document_(document),
+        lights_(lights),
         model_(document.model()),
         report_(report),
         quantized_(document.uses_extension("KHR_mesh_quantization")) {}
@@ -136,6 +137,7 @@ class Builder {
       const tinygltf::Node& node = model_.nodes[at];
       const glm::dmat4 world = parent * local_transform(node, where);
       if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
+      if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) add_light(*light);
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
           fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " +
@@ -159,6 +161,17 @@ class Builder {
         enter(children[c], parent, "nodes[" + std::to_string(top.node) + "].children[" + std::to_string(c) + "]");
       }
     }
+  }
+
+  void add_light(const Light& light) {
+    if (scene_.lights.size() < kMaxLights) {
+      scene_.lights.push_back(light);
+      return;
+    }
+    if (lights_left_out_++ == 0)
+      report_.warnings.push_back("nodes[" + std::to_string(light.node) + "].extensions.KHR_lights_punctual: more than " +
+                                 std::to_string(kMaxLights) + " lights; the first " + std::to_string(kMaxLights) +
+                                 " in node order are shown");
   }
 
   // glTF 2.0, 5.13: perspective with yfov > 0, znear > 0 and zfar absent or beyond znear;
@@ -415,18 +428,20 @@ class Builder {
   }
 
   Document& document_;
+  const LightReader& lights_;
   const tinygltf::Model& model_;
   LoadReport& report_;
   const bool quantized_;
   Scene scene_;
   std::map<int, std::vector<int>> converted_;
+  size_t lights_left_out_ = 0;                            // warned of once
   MaterialReader materials_{document_, scene_, report_};  // after scene_: it adds the default material
 };
 
 }  // namespace
 
-Scene build_scene(Document& document, LoadReport& report, const std::string& name) {
-  return Builder(document, report).build(name);
+Scene build_scene(Document& document, const LightReader& lights, LoadReport& report, const std::string& name) {
+  return Builder(document, lights, report).build(name);
 }
 
 }  // namespace scene::gltf

@@ -5,6 +5,7 @@
 #include "gltf_builder.h"
 #include "gltf_bytes.h"
 #include "gltf_document.h"
+#include "gltf_lights.h"
 #include "gltf_schema.h"
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <cctype>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <system_error>
 
 // The loader's pieces live in scene::gltf, one job a file: gltf_bytes (the container, data: URIs and
@@ -77,6 +79,13 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
   glb.json = std::string();  // parsed: only the BIN chunk is needed from here on
   gltf::integral_floats_to_integers(root);
   if (const std::string problem = gltf::schema_problem(root, report.warnings); !problem.empty()) return refuse(problem);
+  // Before tinygltf, whose own light checks would refuse without naming the field.
+  std::optional<gltf::LightReader> lights;
+  try {
+    lights.emplace(root, report.warnings);
+  } catch (const gltf::LoadError& e) {
+    return refuse(e.message);
+  }
 
   Document document(std::move(root), std::move(glb), fs::weakly_canonical(fs::absolute(file)).parent_path(), options,
                     report.warnings);
@@ -86,7 +95,7 @@ bool load_gltf(const fs::path& file, Scene& out, LoadReport& report, const LoadO
     return refuse("not a valid glTF 2.0 file: " + text);
   }
   try {
-    out = gltf::build_scene(document, report, fs::path(file).filename().string());
+    out = gltf::build_scene(document, *lights, report, fs::path(file).filename().string());
   } catch (const gltf::LoadError& e) {
     return refuse(e.message);
   } catch (const std::bad_alloc&) {

@@ -59,6 +59,9 @@ class SceneGpu {
   size_t bytes() const { return bytes_; }  // uploaded so far
   // What lights the scene (its own environment, else the built-in studio), known once ready().
   const EnvironmentGpu& environment() const { return environment_; }
+  // The scene's own lights (a LightParams block) and how many, known once ready().
+  const gl::Buffer& lights() const { return lights_; }
+  int light_count() const { return light_count_; }
 
  private:
   void finish();
@@ -80,6 +83,8 @@ class SceneGpu {
   size_t bytes_ = 0;
   std::shared_ptr<const scene::Environment> environment_source_;
   EnvironmentGpu environment_;
+  gl::Buffer lights_;
+  int light_count_ = 0;
 };
 
 }  // namespace render

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace render {
 
 // temporal.comp's: this frame's view against the one the history was last computed with (the
@@ -16,9 +18,13 @@ namespace render {
 shared_layout::TemporalParams pack_temporal_params(const ViewTargets& targets, const View& view, bool moved);
 
 // present.frag's, for `view` presented with its lower-left pixel at `viewport` in the framebuffer;
-// `fade` multiplies the image; `environment` lights it.
+// `fade` multiplies the image; `scene`'s environment lights it, and the key light unless the scene
+// brings lights of its own.
 shared_layout::CompositeParams pack_composite_params(const ViewTargets& targets, const View& view, glm::ivec2 viewport,
-                                                     float fade, const EnvironmentGpu& environment);
+                                                     float fade, const SceneGpu& scene);
+
+// present.frag's lights: the scene's own, in world space (at most MAX_LIGHTS; the loader keeps no more).
+shared_layout::LightParams pack_light_params(const std::vector<scene::Light>& lights);
 
 // upsample.comp's (read-back only): the upsampling the last presented frame did, with its 1/far.
 shared_layout::UpsampleParams pack_upsample_params(const ViewTargets& targets);

@@ -77,6 +77,26 @@ struct Instance {
   glm::dmat4 world{1.0};  // double: scenes may sit far from the origin
 };
 
+// A light of the file (KHR_lights_punctual), placed by its node: a directional light shines along
+// its node's -Z from infinitely far; a point light from its node's origin in every direction; a spot
+// light from there along -Z, within its cone. Intensity as glTF gives it (lux for a directional
+// light, candela for the others) at unit exposure, as glTF's sample viewer shows it: a white diffuse
+// surface facing 1 lux shows 1/pi of the display's white.
+struct Light {
+  enum class Type { directional, point, spot };
+  Type type = Type::directional;
+  glm::vec3 color{1.0f};           // linear RGB times intensity
+  glm::dvec3 position{0.0};        // world; point and spot
+  glm::dvec3 direction{0, 0, -1};  // world, unit: where the light shines; directional and spot
+  double range = 0.0;              // beyond it the light falls to nothing (0: unbounded, inverse square only)
+  double inner_cone = 0.0, outer_cone = 0.7853981633974483;  // spot: radians from the axis
+  int node = -1;                                             // for messages
+};
+
+// The lights a scene keeps (the renderer's uniform block has room for these; more are left out
+// with a warning).
+constexpr size_t kMaxLights = 8;
+
 // A camera of the file (glTF's cameras, placed by the node that names them): it looks along its
 // node's -Z with +Y up. Orthographic cameras are kept so an item can be told why it is not used.
 struct FileCamera {
@@ -104,6 +124,9 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Instance> instances;
   std::vector<FileCamera> cameras;  // in the order the shown scene's nodes are visited
+  // The file's own lights; when there are any they replace the player's key light (the
+  // environment still lights the scene).
+  std::vector<Light> lights;
   // What lights it (scene/environment.h): given by whoever shows the scene (a playlist's
   // `environment`, --environment); null: the built-in studio.
   std::shared_ptr<const Environment> environment;

@@ -1,12 +1,9 @@
 // Present: upsamples the AO where it was computed at reduced resolution, shades or shows a debug
-// output, and writes the result into the platform's framebuffer. Shading is glTF's
-// metallic-roughness (pbr.glsl) under the environment (prefiltered cube map, spherical-harmonic
-// irradiance, split-sum table) and the key light, plus emission. The SSAO term occludes only the
-// environment light: its diffuse part by the visibility, its specular part by the specular
-// occlusion derived from it; the key light, or the scene's own lights (KHR_lights_punctual) in its
-// place, stand for lights with shadows of their own that screen-space AO does not know. A material's occlusion texture joins the SSAO visibility by min(),
-// not a product: a baked occlusion map and SSAO see the same creases, and a product would darken
-// them twice (Filament and Frostbite combine them alike).
+// output, and writes the result into the platform's framebuffer. Shading (shade.glsl) is glTF's
+// metallic-roughness under the environment and the key light or the scene's own lights, plus
+// emission; the SSAO term occludes only the environment light. A material's occlusion texture
+// joins the SSAO visibility by min(), not a product: a baked occlusion map and SSAO see the same
+// creases, and a product would darken them twice (Filament and Frostbite combine them alike).
 // ENCODE_SRGB: the framebuffer stores what it is given, so the shader encodes; otherwise the
 // framebuffer is sRGB and encodes on write. OUTPUT (OUTPUT_COLOR by default) is a compile-time
 // choice: llvmpipe runs every side of a branch on a uniform, and the debug outputs' sRGB decoding
@@ -16,17 +13,13 @@
 #include "upsample.glsl"
 #include "gbuffer_normals.glsl"
 #include "material.glsl"
-#include "pbr.glsl"
+#include "shade.glsl"
 
-layout(std140, binding = BINDING_COMPOSITE_PARAMS) uniform CompositeBlock { CompositeParams composite; };
-layout(std140, binding = BINDING_LIGHT_PARAMS) uniform LightBlock { LightParams lights; };
 uniform highp sampler2D u_albedo;
 uniform highp sampler2D u_normal;
 uniform highp sampler2D u_linear_depth;
 uniform highp sampler2D u_ao;  // r = AO (at the AO resolution), g = depth / far
 uniform highp usampler2D u_material;
-uniform highp samplerCube u_specular;  // the environment prefiltered per roughness, a level each
-uniform highp sampler2D u_brdf_lut;    // the split-sum table: (A, B) at (n.v, roughness)
 
 #ifndef OUTPUT
 #define OUTPUT OUTPUT_COLOR
@@ -34,10 +27,6 @@ uniform highp sampler2D u_brdf_lut;    // the split-sum table: (A, B) at (n.v, r
 
 layout(location = 0) out vec4 fragment;
 
-vec3 linear_to_srgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 vec3 srgb_to_linear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
 }
@@ -93,42 +82,10 @@ void main() {
   highp uvec2 packed_material = texelFetch(u_material, pixel, 0).xy;
   vec4 material = unpackUnorm4x8(packed_material.x);  // roughness, metallic, occlusion
   vec3 view_position = view_position_at(pixel, depth, composite.unproject, ivec2(composite.full_width, composite.full_height));
-  vec3 to_viewer = composite.viewer_straight_ahead != 0 ? vec3(0.0, 0.0, 1.0) : -normalize(view_position);
-  SurfacePoint s = surface_point(surface.rgb, material.y, material.x, normal, to_viewer);
-  // Normalised in world space: a light field's view space is physical space, scaled from the world.
-  mat3 to_world = mat3(composite.view_to_world);
-  vec3 irradiance = sh_irradiance(composite.irradiance, normalize(to_world * normal)) * composite.environment_intensity;
-  vec3 prefiltered = textureLod(u_specular, to_world * reflect(-s.v, normal), s.roughness * composite.specular_max_level).rgb *
-                     composite.environment_intensity;
-  vec3 environment_diffuse, environment_specular;
-  environment_light(s, texture(u_brdf_lut, vec2(s.nv, s.roughness)).rg, irradiance, prefiltered, environment_diffuse,
-                    environment_specular);
   // --ao-strength darkens or lightens the shaded image only: the AO view and every read-back show the
   // AO as computed, which is what accuracy is measured on.
   float visibility = min(pow(max(1.0 - ao, 0.0), composite.ao_strength), material.z);
-  vec3 color = environment_diffuse * visibility + environment_specular * specular_occlusion(s.nv, visibility, s.roughness);
-  color += punctual_light(s, composite.light_direction.xyz, composite.light_color.rgb);
-  if (lights.count > 0) {
-    highp vec3 world_position = (composite.view_to_world * vec4(view_position, 1.0)).xyz;
-    // World to view for directions: the view's rotation and a uniform scale (a module's), which
-    // the normalisation removes.
-    mat3 to_view = transpose(to_world);
-    for (int i = 0; i < lights.count; ++i) {
-      highp vec4 position = lights.position[i];
-      highp vec3 to_light = position.xyz;
-      highp float falloff = 1.0;
-      if (lights.color[i].a > 0.0) {
-        to_light -= world_position;
-        highp float distance_squared = max(dot(to_light, to_light), 1e-8);
-        to_light *= inversesqrt(distance_squared);
-        // KHR_lights_punctual's range window: inverse square, brought smoothly to 0 at the range.
-        highp float window = clamp(1.0 - distance_squared * distance_squared * position.w * position.w, 0.0, 1.0);
-        highp float cone = clamp(dot(lights.axis[i].xyz, -to_light) * lights.cone[i].x + lights.cone[i].y, 0.0, 1.0);
-        falloff = window / distance_squared * cone * cone;
-      }
-      color += punctual_light(s, normalize(to_view * to_light), lights.color[i].rgb * falloff);
-    }
-  }
+  vec3 color = shade(surface.rgb, material.y, material.x, normal, view_position, visibility);
   color += unpack_rgb9e5(packed_material.y);
   fragment = shaded(color * fade);
 #endif

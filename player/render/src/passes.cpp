@@ -31,6 +31,8 @@ std::string_view pass_name(Pass pass) {
       return "blur vertical";
     case Pass::present:
       return "present";
+    case Pass::blend:
+      return "blend";
   }
   return "?";
 }
@@ -55,6 +57,52 @@ void bind_material_texture(int unit, const SceneGpu& scene, const scene::Texture
   gl::api.BindTexture(GL_TEXTURE_2D, scene.textures()[static_cast<size_t>(slot.texture)].id());
 }
 
+// Sets what `program` (bound, its projection set) reads of `draw`: the transforms, and unless
+// `depth_only` the material's factors and textures; then draws it.
+void draw_one(const PassContext& context, const RasterProgram& program, const SceneGpu::Draw& draw, unsigned bits,
+              bool depth_only) {
+  const SceneGpu& scene = context.scene;
+  const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
+  const bool masked = (bits & features::alpha_mask) != 0;
+  // Composed in double, then rounded: positions reach the GPU relative to the camera.
+  const glm::dmat4 model_view_d = context.view.view * draw.world;
+  const glm::mat4 model_view(model_view_d);
+  gl::api.UniformMatrix4fv(program.model_view, 1, GL_FALSE, glm::value_ptr(model_view));
+  // A mirroring transform turns the winding round (glTF: the determinant decides which side is front).
+  const bool mirrored = glm::determinant(glm::dmat3(model_view_d)) < 0.0;
+  gl::api.FrontFace(mirrored ? GL_CW : GL_CCW);
+  if (!depth_only) {
+    gl::api.Uniform1f(program.frame_handedness, mirrored ? -1.0f : 1.0f);
+    const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
+    gl::api.UniformMatrix3fv(program.normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+    gl::api.Uniform1f(program.lit, material.unlit ? 0.0f : 1.0f);
+    const glm::vec4 factors(material.metallic, material.roughness, material.normal_scale, material.occlusion_strength);
+    gl::api.Uniform4fv(program.material, 1, glm::value_ptr(factors));
+    gl::api.Uniform3fv(program.emissive, 1, glm::value_ptr(material.emissive));
+    bind_material_texture(unit_metallic_roughness, scene, material.metallic_roughness);
+    bind_material_texture(unit_normal, scene, material.normal);
+    bind_material_texture(unit_occlusion, scene, material.occlusion);
+    bind_material_texture(unit_emissive, scene, material.emissive_texture);
+  }
+  if (!depth_only || masked) {
+    gl::api.Uniform4fv(program.base_color, 1, glm::value_ptr(material.base_color));
+    if (masked) gl::api.Uniform1f(program.alpha_cutoff, material.alpha_cutoff);
+    if (bits & features::base_color_texture) {
+      gl::api.ActiveTexture(GL_TEXTURE0 + unit_base_color);
+      gl::api.BindTexture(GL_TEXTURE_2D, material.base_color_texture >= 0
+                                             ? scene.textures()[static_cast<size_t>(material.base_color_texture)].id()
+                                             : context.programs.white.id());
+    }
+  }
+  if (material.double_sided)
+    gl::api.Disable(GL_CULL_FACE);
+  else
+    gl::api.Enable(GL_CULL_FACE);
+  const SceneGpu::Mesh& mesh = scene.meshes()[static_cast<size_t>(draw.mesh)];
+  gl::api.BindVertexArray(mesh.vao.id());
+  gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+}
+
 void draw_scene(const PassContext& context, bool depth_only) {
   const Programs& programs = context.programs;
   const SceneGpu& scene = context.scene;
@@ -65,60 +113,70 @@ void draw_scene(const PassContext& context, bool depth_only) {
   if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, context.targets.module_ubo.id());
   const glm::mat4 projection(context.view.projection);
   const RasterProgram* bound = nullptr;
-  for (const SceneGpu::Draw& draw : scene.draws()) {
-    const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
-    const bool masked = material.alpha_tested();
-    const unsigned bits = material_features(material, untextured_variant);
-    // Every variant a scene's materials need was compiled when the view was configured for it.
-    const RasterProgram* program =
-        depth_only ? (masked ? &masked_depth_program : &depth_program) : programs.gbuffer(bits, modules);
-    if (program == nullptr) continue;
+  // A light field module has no forward pass: its blended materials are alpha-tested at their cutoff.
+  for (const std::vector<SceneGpu::Draw>* draws : {&scene.draws(), modules ? &scene.blended_draws() : nullptr}) {
+    if (draws == nullptr) continue;
+    for (const SceneGpu::Draw& draw : *draws) {
+      const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
+      const bool masked = material.alpha_tested();
+      const unsigned bits = material_features(material, untextured_variant);
+      // Every variant a scene's materials need was compiled when the view was configured for it.
+      const RasterProgram* program =
+          depth_only ? (masked ? &masked_depth_program : &depth_program) : programs.gbuffer(bits, modules);
+      if (program == nullptr) continue;
+      if (program != bound) {
+        gl::api.UseProgram(program->program->id());
+        gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
+        bound = program;
+      }
+      draw_one(context, *program, draw, bits, depth_only);
+    }
+  }
+  gl::api.BindVertexArray(0);
+  gl::api.ActiveTexture(GL_TEXTURE0);
+  gl::api.FrontFace(GL_CCW);
+}
+
+// The blended materials over the presented image (forward.frag), farthest first by the centre of
+// each draw's box: glTF sorts nothing within a mesh, and neither does this.
+void blend_pass(const PassContext& context, bool srgb) {
+  const SceneGpu& scene = context.scene;
+  const std::vector<SceneGpu::Draw>& draws = scene.blended_draws();
+  std::vector<std::pair<double, int>>& order = scene.blend_order();
+  for (size_t i = 0; i < draws.size(); ++i) {
+    const double depth = -(context.view.view * glm::dvec4(draws[i].centre, 1.0)).z;
+    order[i] = {-depth, static_cast<int>(i)};
+  }
+  std::sort(order.begin(), order.end());
+  const bool untextured_variant = context.targets.settings().untextured_variant;
+  const glm::mat4 projection(context.view.projection);
+  gl::api.Enable(GL_BLEND);
+  gl::api.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  gl::api.CullFace(GL_BACK);
+  gl::api.ActiveTexture(GL_TEXTURE0 + unit_specular);
+  gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, scene.environment().specular.id());
+  bind_texture(unit_brdf_lut, context.programs.brdf_lut);
+  bind_texture(unit_linear_depth, context.targets.linear_depth);
+  const RasterProgram* bound = nullptr;
+  for (const auto& [key, index] : order) {
+    const SceneGpu::Draw& draw = draws[static_cast<size_t>(index)];
+    const unsigned bits =
+        material_features(scene.materials()[static_cast<size_t>(draw.material)], untextured_variant) & ~features::alpha_mask;
+    const RasterProgram* program = context.programs.forward(bits, srgb);
+    if (program == nullptr) continue;  // prepared with the scene (prepare_material_programs)
     if (program != bound) {
       gl::api.UseProgram(program->program->id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
       bound = program;
     }
-    // Composed in double, then rounded: positions reach the GPU relative to the camera.
-    const glm::dmat4 model_view_d = context.view.view * draw.world;
-    const glm::mat4 model_view(model_view_d);
-    gl::api.UniformMatrix4fv(program->model_view, 1, GL_FALSE, glm::value_ptr(model_view));
-    // A mirroring transform turns the winding round (glTF: the determinant decides which side is front).
-    const bool mirrored = glm::determinant(glm::dmat3(model_view_d)) < 0.0;
-    gl::api.FrontFace(mirrored ? GL_CW : GL_CCW);
-    if (!depth_only) {
-      gl::api.Uniform1f(program->frame_handedness, mirrored ? -1.0f : 1.0f);
-      const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model_view_d))));
-      gl::api.UniformMatrix3fv(program->normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-      gl::api.Uniform1f(program->lit, material.unlit ? 0.0f : 1.0f);
-      const glm::vec4 factors(material.metallic, material.roughness, material.normal_scale, material.occlusion_strength);
-      gl::api.Uniform4fv(program->material, 1, glm::value_ptr(factors));
-      gl::api.Uniform3fv(program->emissive, 1, glm::value_ptr(material.emissive));
-      bind_material_texture(unit_metallic_roughness, scene, material.metallic_roughness);
-      bind_material_texture(unit_normal, scene, material.normal);
-      bind_material_texture(unit_occlusion, scene, material.occlusion);
-      bind_material_texture(unit_emissive, scene, material.emissive_texture);
-    }
-    if (!depth_only || masked) {
-      gl::api.Uniform4fv(program->base_color, 1, glm::value_ptr(material.base_color));
-      if (masked) gl::api.Uniform1f(program->alpha_cutoff, material.alpha_cutoff);
-      if (bits & features::base_color_texture) {
-        gl::api.ActiveTexture(GL_TEXTURE0 + unit_base_color);
-        gl::api.BindTexture(GL_TEXTURE_2D, material.base_color_texture >= 0
-                                               ? scene.textures()[static_cast<size_t>(material.base_color_texture)].id()
-                                               : programs.white.id());
-      }
-    }
-    if (material.double_sided)
-      gl::api.Disable(GL_CULL_FACE);
-    else
-      gl::api.Enable(GL_CULL_FACE);
-    const SceneGpu::Mesh& mesh = scene.meshes()[static_cast<size_t>(draw.mesh)];
-    gl::api.BindVertexArray(mesh.vao.id());
-    gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    draw_one(context, *program, draw, bits, false);
   }
+  gl::api.Disable(GL_BLEND);
+  gl::api.Disable(GL_CULL_FACE);
   gl::api.BindVertexArray(0);
   gl::api.ActiveTexture(GL_TEXTURE0);
   gl::api.FrontFace(GL_CCW);
+  context.finish_pass(Pass::blend);
 }
 
 void begin_raster(const PassContext& context) {
@@ -167,9 +225,16 @@ void accumulate(const PassContext& context, bool moved) {
 }  // namespace
 
 bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
-                               std::string& error) {
+                               bool srgb_target, std::string& error) {
   for (const scene::Material& material : scene.materials())
     if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant), modules, error)) return false;
+  if (modules || settings.output != Picture::color) return true;
+  for (const SceneGpu::Draw& draw : scene.blended_draws()) {
+    const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
+    if (!programs.prepare_forward(material_features(material, settings.untextured_variant) & ~features::alpha_mask, srgb_target,
+                                  error))
+      return false;
+  }
   return true;
 }
 
@@ -327,6 +392,9 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   gl::api.BindVertexArray(context.programs.empty_vertex_array.id());
   gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
   gl::api.BindVertexArray(0);
+  // The debug outputs show the G-buffer and the AO, which blended surfaces are not part of.
+  if (!view.module && settings.output == Picture::color && !context.scene.blended_draws().empty())
+    blend_pass(context, target.srgb);
   // The next frame's compute passes store into the AO images this draw reads. A draw may still be
   // running (llvmpipe bins and rasterises it later) when a dispatch starts, and only this barrier
   // orders image stores after the texture fetches issued before it: without it, frames after the

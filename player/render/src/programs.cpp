@@ -50,7 +50,10 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
                                                   {"u_metallic_roughness_texture", unit_metallic_roughness},
                                                   {"u_normal_texture", unit_normal},
                                                   {"u_occlusion_texture", unit_occlusion},
-                                                  {"u_emissive_texture", unit_emissive}};
+                                                  {"u_emissive_texture", unit_emissive},
+                                                  {"u_specular", unit_specular},
+                                                  {"u_brdf_lut", unit_brdf_lut},
+                                                  {"u_linear_depth", unit_linear_depth}};
   for (const auto& [name, unit] : samplers)
     if (const GLint location = gl::uniform(*out.program, name); location >= 0) gl::api.Uniform1i(location, unit);
   return true;
@@ -151,6 +154,18 @@ bool Programs::prepare_gbuffer(unsigned feature_bits, bool modules, std::string&
   if (modules)
     defines += std::string("#define LIGHTFIELD_MODULES 1\n") + (modules_without_material ? "#define NO_MATERIAL_TARGET 1\n" : "");
   if (!build_raster(*cache_, program, "gbuffer.frag", defines, error)) {
+    program = RasterProgram{};
+    return false;
+  }
+  gl::api.UseProgram(0);
+  return true;
+}
+
+bool Programs::prepare_forward(unsigned feature_bits, bool srgb, std::string& error) {
+  RasterProgram& program = forward_[srgb ? 1 : 0][feature_bits];
+  if (program.program != nullptr) return true;
+  const std::string defines = gbuffer_defines(feature_bits) + (srgb ? "" : "#define ENCODE_SRGB 1\n");
+  if (!build_raster(*cache_, program, "forward.frag", defines, error)) {
     program = RasterProgram{};
     return false;
   }

@@ -86,6 +86,7 @@ void SceneGpu::begin(std::shared_ptr<const scene::Scene> scene, const gl::Caps& 
   meshes_.clear();
   textures_.clear();
   draws_.clear();
+  blended_.clear();
   materials_ = source_->materials;
   bytes_ = 0;
 }
@@ -208,8 +209,13 @@ void SceneGpu::finish() {
   const shared_layout::LightParams lights = pack_light_params(scene.lights);
   lights_ = detail::make_uniform_buffer(&lights, sizeof lights);
   light_count_ = lights.count;
-  for (const scene::Instance& instance : scene.instances)
-    draws_.push_back({instance.mesh, scene.meshes[static_cast<size_t>(instance.mesh)].material, instance.world});
+  for (const scene::Instance& instance : scene.instances) {
+    const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
+    const glm::dvec3 centre(instance.world * glm::dvec4(glm::dvec3(mesh.min + mesh.max) * 0.5, 1.0));
+    const bool blended = materials_[static_cast<size_t>(mesh.material)].alpha_mode == scene::AlphaMode::blend;
+    (blended ? blended_ : draws_).push_back({instance.mesh, mesh.material, instance.world, centre});
+  }
+  blend_order_.resize(blended_.size());
   // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).
   auto group = [&](const Draw& draw) {
     const scene::Material& material = materials_[static_cast<size_t>(draw.material)];

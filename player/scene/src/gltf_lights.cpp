@@ -12,8 +12,7 @@ constexpr double kHalfPi = 1.5707963267948966;
 double number(const nlohmann::json& object, const char* key, double fallback, const std::string& where) {
   const auto found = object.find(key);
   if (found == object.end()) return fallback;
-  if (!found->is_number() || !std::isfinite(found->get<double>()))
-    fail(where + "." + key + ": expected a finite number");
+  if (!found->is_number() || !std::isfinite(found->get<double>())) fail(where + "." + key + ": expected a finite number");
   return found->get<double>();
 }
 
@@ -72,8 +71,7 @@ LightReader::LightReader(const nlohmann::json& root, std::vector<std::string>& w
     const nlohmann::json& source = (*lights)[i];
     if (!source.is_object()) fail(field + ": expected an object");
     const auto type = source.find("type");
-    if (type == source.end() || !type->is_string())
-      fail(field + ".type: expected \"directional\", \"point\" or \"spot\"");
+    if (type == source.end() || !type->is_string()) fail(field + ".type: expected \"directional\", \"point\" or \"spot\"");
     const std::string& name = type->get_ref<const std::string&>();
     if (name != "directional" && name != "point" && name != "spot") {
       warnings.push_back(field + ".type: \"" + name + "\" is not a light type this player knows; the light is left out");
@@ -93,8 +91,7 @@ std::optional<Light> LightReader::place(const nlohmann::json& node, int node_ind
   if (!extension->is_object()) fail(where + ": expected an object");
   const auto index = extension->find("light");
   if (index == extension->end() || !index->is_number_integer()) fail(where + ".light: expected a light index");
-  if (!has_extension_)
-    fail(where + ".light: the file defines no lights (extensions.KHR_lights_punctual.lights at its root)");
+  if (!has_extension_) fail(where + ".light: the file defines no lights (extensions.KHR_lights_punctual.lights at its root)");
   const auto at = index->get<long long>();
   if (at < 0 || static_cast<size_t>(at) >= definitions_.size())
     fail(where + ".light: " + std::to_string(at) + " out of range (there are " + std::to_string(definitions_.size()) + ")");

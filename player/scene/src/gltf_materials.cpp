@@ -28,14 +28,9 @@ int MaterialReader::material(int index, const std::string& where) {
     if (!std::isfinite(source.alphaCutoff) || source.alphaCutoff < 0.0)
       fail(field + ".alphaCutoff: " + std::to_string(source.alphaCutoff) + "; expected a number of at least 0");
     material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
-    // Blending needs a forward pass after the deferred frame; until then a blended material is
-    // cut at 0.5, which keeps labels and foliage legible instead of drawing their transparent
-    // texels as an opaque colour.
-    if (material.alpha_mode == AlphaMode::blend) {
-      material.alpha_cutoff = 0.5f;
-      report_.warnings.push_back(field +
-                                 ".alphaMode: BLEND is drawn as MASK with alphaCutoff 0.5 (blending is not supported yet)");
-    }
+    // glTF ignores the cutoff of a blended material; the player uses it where it cannot blend (a
+    // light field module's G-buffer), at 0.5, which keeps labels and foliage legible.
+    if (material.alpha_mode == AlphaMode::blend) material.alpha_cutoff = 0.5f;
   } else if (source.alphaMode != "OPAQUE") {
     fail(field + ".alphaMode: \"" + source.alphaMode + "\"; expected \"OPAQUE\", \"MASK\" or \"BLEND\"");
   }

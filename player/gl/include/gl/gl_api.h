@@ -26,6 +26,7 @@ namespace gl {
   X(PFNGLDEPTHFUNCPROC, DepthFunc) X(PFNGLUNIFORM3FVPROC, Uniform3fv)                  \
   X(PFNGLDEPTHMASKPROC, DepthMask) X(PFNGLCOLORMASKPROC, ColorMask)                   \
   X(PFNGLCULLFACEPROC, CullFace) X(PFNGLFRONTFACEPROC, FrontFace)                     \
+  X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                                     \
   X(PFNGLGENBUFFERSPROC, GenBuffers) X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)         \
   X(PFNGLBINDBUFFERPROC, BindBuffer) X(PFNGLBUFFERDATAPROC, BufferData)               \
   X(PFNGLBUFFERSUBDATAPROC, BufferSubData) X(PFNGLBINDBUFFERBASEPROC, BindBufferBase) \

@@ -14,8 +14,8 @@
 namespace render {
 
 // The passes of one frame of one view, in order; their times are kept by index (PassTimes).
-enum class Pass : std::uint8_t { depth_prepass, gbuffer, depth_chain, ssao, temporal, blur_h, blur_v, present };
-inline constexpr int kPassCount = static_cast<int>(Pass::present) + 1;
+enum class Pass : std::uint8_t { depth_prepass, gbuffer, depth_chain, ssao, temporal, blur_h, blur_v, present, blend };
+inline constexpr int kPassCount = static_cast<int>(Pass::blend) + 1;
 std::string_view pass_name(Pass pass);
 
 // Where the present pass writes: a framebuffer (0: the platform's), the view's rectangle in it, and
@@ -37,18 +37,20 @@ struct PassContext {
   void finish_pass(Pass pass) const;  // error check and timer mark
 };
 
-// Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), so the
+// Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), and the
+// forward variants of its blended ones into a target that encodes sRGB itself or not, so the
 // frames that draw it compile nothing.
 bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
-                               std::string& error);
+                               bool srgb_target, std::string& error);
 
 void depth_prepass(const PassContext& context);
 void gbuffer_pass(const PassContext& context, bool after_prepass);
 // The AO passes (depth chain, SSAO, temporal accumulation, blur). Returns false when the last
 // frame's AO was kept instead.
 bool ao_passes(const PassContext& context);
-// Upsampling (when AO is at half resolution), shading and sRGB encoding, into `target`. `fade`
-// multiplies the image (transitions between playlist items).
+// Upsampling (when AO is at half resolution), shading and sRGB encoding, into `target`, then the
+// scene's blended materials over it (the blend pass; not on light field modules, nor under a debug
+// output). `fade` multiplies the image (transitions between playlist items).
 void present_pass(const PassContext& context, const PresentTarget& target, float fade);
 
 // The passes before present_pass in order for one view, choosing the prepass as the settings say.

@@ -38,8 +38,17 @@ constexpr unsigned count = 1u << 10;
 
 // The feature bits of `material`; `untextured_variant` off: untextured materials fetch a white texel.
 unsigned material_features(const scene::Material& material, bool untextured_variant);
-// Texture units of the G-buffer programs' samplers.
-enum TextureUnit { unit_base_color = 0, unit_metallic_roughness, unit_normal, unit_occlusion, unit_emissive };
+// Texture units of the G-buffer programs' samplers, and the forward programs' besides.
+enum TextureUnit {
+  unit_base_color = 0,
+  unit_metallic_roughness,
+  unit_normal,
+  unit_occlusion,
+  unit_emissive,
+  unit_specular,
+  unit_brdf_lut,
+  unit_linear_depth
+};
 
 class Programs {
  public:
@@ -80,6 +89,13 @@ class Programs {
   }
   // Compiles the variant of `feature_bits` (for light field modules: `modules`) unless it exists.
   bool prepare_gbuffer(unsigned feature_bits, bool modules, std::string& error);
+  // The forward program of blended materials (forward.frag) of a feature set (without alpha_mask),
+  // into a framebuffer that encodes sRGB itself (`srgb`) or not; null before prepare_forward.
+  const RasterProgram* forward(unsigned feature_bits, bool srgb) const {
+    const RasterProgram& program = forward_[srgb ? 1 : 0][feature_bits];
+    return program.program ? &program : nullptr;
+  }
+  bool prepare_forward(unsigned feature_bits, bool srgb, std::string& error);
   RasterProgram depth_only, depth_masked;                // alpha-tested materials (scene::Material::alpha_tested)
   RasterProgram module_depth_only, module_depth_masked;  // see build_module_programs
   // Light field modules cannot write the material target (a GPU with four draw buffers).
@@ -103,7 +119,7 @@ class Programs {
   using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
   PerVariant<const gl::Program*> ssao_{};
   std::array<std::array<const gl::Program*, 2>, std::size(kPictureNames)> present_{};
-  std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{};
+  std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{}, forward_{};
   PerVariant<std::string> ssao_defines_{};
   PerVariant<GLint> ssao_inverse_far_{};
 };

@@ -8,6 +8,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace render {
@@ -32,6 +33,7 @@ class SceneGpu {
     int mesh;
     int material;
     glm::dmat4 world;
+    glm::dvec3 centre;  // of the mesh's box, in the world: blended draws are sorted by it
   };
 
   // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().
@@ -52,6 +54,12 @@ class SceneGpu {
   // Grouped by G-buffer variant (one program switch per group), alpha-tested last: they lose early
   // depth rejection and are drawn over the depth the others have laid.
   const std::vector<Draw>& draws() const { return draws_; }
+  // The draws of blended materials (alphaMode BLEND), drawn after the opaque image by the forward
+  // pass; light field modules draw them in the G-buffer, alpha-tested at their cutoff.
+  const std::vector<Draw>& blended_draws() const { return blended_; }
+  // The frame's back-to-front order of blended_draws(): sized once the scene is uploaded, so the
+  // frame loop sorts without allocating.
+  std::vector<std::pair<double, int>>& blend_order() const { return blend_order_; }
   // The scene's world-space box, known once ready().
   const scene::Bounds& bounds() const { return bounds_; }
   double radius() const { return radius_; }
@@ -76,7 +84,8 @@ class SceneGpu {
   std::vector<Mesh> meshes_;
   std::vector<gl::Texture> textures_;
   std::vector<scene::Material> materials_;
-  std::vector<Draw> draws_;
+  std::vector<Draw> draws_, blended_;
+  mutable std::vector<std::pair<double, int>> blend_order_;
   scene::Bounds bounds_;
   double radius_ = 1.0;
   glm::dvec3 centre_{0.0};

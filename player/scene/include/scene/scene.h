@@ -41,7 +41,8 @@ struct Texture {
   bool repeat_s = true, repeat_t = true;
 };
 
-// glTF's alphaMode. blend is drawn as mask at its cutoff until a forward pass exists (the loader warns).
+// glTF's alphaMode. blend is drawn by the forward pass over the opaque image; where there is none
+// (light field modules) as mask at 0.5.
 enum class AlphaMode { opaque, mask, blend };
 
 // A material's texture: its index into Scene::textures (-1: none) and which of the mesh's two UV

@@ -85,6 +85,15 @@ int main(int argc, char** argv) {
                    "View through the scene's own camera N (glTF's cameras, in the order the scene's nodes are visited) "
                    "instead of framing it; the aspect is the image's")
       ->check(CLI::NonNegativeNumber);
+  render_cmd
+      ->add_option("--time", render.time,
+                   "Pose the scene's animations at T seconds (each selection loops over its longest animation)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--animation", render.animation,
+                   "Which of the scene's animations pose it: all, none (the rest pose), an index or a name")
+      ->capture_default_str();
   SettingOptions render_settings;
   render_settings.add_to(*render_cmd, render.frame);
   render_cmd->add_option("--platform", render.platform, "GL platform: " + platform::names_text())

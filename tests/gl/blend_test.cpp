@@ -32,9 +32,9 @@ TEST_P(Blending, BlendedSurfacesAreDrawnOverTheOpaqueImageFarthestFirst) {
   };
   built.materials = {scene::Material{}, unlit({0, 0, 1, 1}, scene::AlphaMode::opaque),
                      unlit({1, 0, 0, 0.5f}, scene::AlphaMode::blend), unlit({0, 1, 0, 0.5f}, scene::AlphaMode::blend)};
-  scene::add_instance(built, scene::make_quad({-1.5f, 0.0f, 0.5f}, {3, 0, 0}, {0, 1.5f, 0}, 2));   // red, front, top
-  scene::add_instance(built, scene::make_quad({-2.0f, -2.0f, -0.5f}, {4, 0, 0}, {0, 4, 0}, 3));  // green, back
-  scene::add_instance(built, scene::make_quad({-2.0f, -2.0f, 0.0f}, {2, 0, 0}, {0, 4, 0}, 1));   // blue, left
+  scene::add_instance(built, scene::make_quad({-1.5f, 0.0f, 0.5f}, {3, 0, 0}, {0, 1.5f, 0}, 2));  // red, front, top
+  scene::add_instance(built, scene::make_quad({-2.0f, -2.0f, -0.5f}, {4, 0, 0}, {0, 4, 0}, 3));   // green, back
+  scene::add_instance(built, scene::make_quad({-2.0f, -2.0f, 0.0f}, {2, 0, 0}, {0, 4, 0}, 1));    // blue, left
   scene::update_bounds(built);
   render::FrameSettings settings;
   settings.width = settings.height = 96;

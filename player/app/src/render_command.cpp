@@ -1,5 +1,7 @@
 #include "app/render_command.h"
 
+#include "scene/animation.h"
+
 #include "dump.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -180,6 +182,16 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     return 1;
   }
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+  int selection = scene::Rig::kAllAnimations;
+  if (!scene::select_animation(scene.rig.get(), options.animation, selection, error)) {
+    err << "error: --animation: " << error << "\n";
+    return 2;
+  }
+  if (scene.rig) {
+    scene::Pose pose(scene.rig);
+    pose.at(selection, options.time);
+    scene::pose_instances(scene, pose);
+  }
   render::Renderer renderer;
   const render::PresentTarget target{platform.framebuffer(), 0, 0, platform.srgb_framebuffer()};
   if (!renderer.init(*session, target, error) || !renderer.upload(scene, error) || !renderer.configure(options.frame, error)) {

@@ -87,6 +87,7 @@ void SceneGpu::begin(std::shared_ptr<const scene::Scene> scene, const gl::Caps& 
   textures_.clear();
   draws_.clear();
   blended_.clear();
+  rig_.reset();
   materials_ = source_->materials;
   bytes_ = 0;
 }
@@ -211,10 +212,13 @@ void SceneGpu::finish() {
   light_count_ = lights.count;
   for (const scene::Instance& instance : scene.instances) {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
-    const glm::dvec3 centre(instance.world * glm::dvec4(glm::dvec3(mesh.min + mesh.max) * 0.5, 1.0));
+    const glm::dvec3 box_centre = glm::dvec3(mesh.min + mesh.max) * 0.5;
+    const glm::dvec3 centre(instance.world * glm::dvec4(box_centre, 1.0));
     const bool blended = materials_[static_cast<size_t>(mesh.material)].alpha_mode == scene::AlphaMode::blend;
-    (blended ? blended_ : draws_).push_back({instance.mesh, mesh.material, instance.world, centre});
+    (blended ? blended_ : draws_)
+        .push_back({instance.mesh, mesh.material, instance.world, centre, instance.node, instance.offset, box_centre});
   }
+  rig_ = scene.rig;
   blend_order_.resize(blended_.size());
   // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).
   auto group = [&](const Draw& draw) {
@@ -230,6 +234,15 @@ void SceneGpu::finish() {
   if (status != GL_NO_ERROR) error_ = "uploading the scene raised GL error 0x" + std::to_string(status);
   ready_ = error_.empty();
   source_.reset();
+}
+
+void SceneGpu::pose(const std::vector<glm::dmat4>& node_worlds) {
+  for (std::vector<Draw>* draws : {&draws_, &blended_})
+    for (Draw& draw : *draws) {
+      if (draw.node < 0 || static_cast<size_t>(draw.node) >= node_worlds.size()) continue;
+      draw.world = node_worlds[static_cast<size_t>(draw.node)] * draw.offset;
+      draw.centre = glm::dvec3(draw.world * glm::dvec4(draw.box_centre, 1.0));
+    }
 }
 
 bool SceneGpu::upload(const scene::Scene& scene, const gl::Caps& caps, std::string& error) {

@@ -1,6 +1,7 @@
 #include "gltf_builder.h"
 
 #include "gltf_accessors.h"
+#include "gltf_animation.h"
 #include "gltf_document.h"
 #include "gltf_draco.h"
 #include "gltf_lights.h"
@@ -84,7 +85,16 @@ class Builder {
     // glTF allows a file without scenes ("nothing to render at load time", 3.5.1): the kiosk has
     // nothing it could rightly choose to show, so it says so rather than guessing at root nodes.
     if (!shown || shown->nodes.empty()) fail("scenes: the file has no scene with nodes to show");
+    // Only a file that animates keeps its node tree: a static scene needs its instances alone.
+    if (!model_.animations.empty()) {
+      rig_ = std::make_shared<Rig>();
+      node_of_.assign(model_.nodes.size(), -1);
+    }
     visit(shown->nodes, "scenes[" + std::to_string(shown_index) + "].nodes");
+    if (rig_) {
+      rig_->animations = read_animations(document_, node_of_, *rig_, report_.warnings);
+      scene_.rig = std::move(rig_);
+    }
     if (scene_.instances.empty()) fail("meshes: the scene contains no triangles to render");
     update_bounds(scene_);
     if (!std::isfinite(scene_.bounds.radius()))
@@ -122,10 +132,11 @@ class Builder {
       int node;
       glm::dmat4 world;
       size_t next_child;
+      int rig_node;  // -1 without a rig
     };
     std::vector<OpenNode> stack;
     std::vector<char> on_path(model_.nodes.size(), 0), seen(model_.nodes.size(), 0);
-    auto enter = [&](int index, const glm::dmat4& parent, const std::string& field) {
+    auto enter = [&](int index, const glm::dmat4& parent, int rig_parent, const std::string& field) {
       if (index < 0 || static_cast<size_t>(index) >= model_.nodes.size())
         fail(field + ": node index " + std::to_string(index) + " out of range (there are " + std::to_string(model_.nodes.size()) +
              ")");
@@ -136,18 +147,20 @@ class Builder {
       const std::string where = "nodes[" + std::to_string(index) + "]";
       const tinygltf::Node& node = model_.nodes[at];
       const glm::dmat4 world = parent * local_transform(node, where);
+      const int rig_node = rig_ ? add_rig_node(node, rig_parent) : -1;
+      if (rig_) node_of_[at] = rig_node;
       if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
       if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) add_light(*light);
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
           fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " +
                std::to_string(model_.meshes.size()) + ")");
-        for (int mesh : meshes_of(node.mesh)) scene_.instances.push_back({mesh, world});
+        for (int mesh : meshes_of(node.mesh)) scene_.instances.push_back({mesh, world, rig_node, glm::dmat4(1.0)});
       }
-      stack.push_back({index, world, 0});
+      stack.push_back({index, world, 0, rig_node});
     };
     for (size_t r = 0; r < roots.size(); ++r) {
-      enter(roots[r], glm::dmat4(1.0), roots_field + "[" + std::to_string(r) + "]");
+      enter(roots[r], glm::dmat4(1.0), -1, roots_field + "[" + std::to_string(r) + "]");
       while (!stack.empty()) {
         OpenNode& top = stack.back();
         const std::vector<int>& children = model_.nodes[static_cast<size_t>(top.node)].children;
@@ -158,9 +171,25 @@ class Builder {
         }
         const size_t c = top.next_child++;
         const glm::dmat4 parent = top.world;  // enter() grows the stack, which may move `top`
-        enter(children[c], parent, "nodes[" + std::to_string(top.node) + "].children[" + std::to_string(c) + "]");
+        const int rig_parent = top.rig_node;
+        enter(children[c], parent, rig_parent, "nodes[" + std::to_string(top.node) + "].children[" + std::to_string(c) + "]");
       }
     }
+  }
+
+  int add_rig_node(const tinygltf::Node& node, int parent) {
+    Rig::Node out;
+    out.parent = parent;
+    if (node.matrix.size() == 16) {
+      out.uses_matrix = true;
+      out.matrix = glm::make_mat4(node.matrix.data());
+    }
+    if (node.translation.size() == 3) out.translation = glm::make_vec3(node.translation.data());
+    if (node.rotation.size() == 4)
+      out.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+    if (node.scale.size() == 3) out.scale = glm::make_vec3(node.scale.data());
+    rig_->nodes.push_back(out);
+    return static_cast<int>(rig_->nodes.size()) - 1;
   }
 
   void add_light(const Light& light) {
@@ -435,6 +464,8 @@ class Builder {
   Scene scene_;
   std::map<int, std::vector<int>> converted_;
   size_t lights_left_out_ = 0;                            // warned of once
+  std::shared_ptr<Rig> rig_;                              // while the nodes are visited, in an animated file
+  std::vector<int> node_of_;                              // file node -> rig node
   MaterialReader materials_{document_, scene_, report_};  // after scene_: it adds the default material
 };
 

@@ -39,7 +39,9 @@ void recenter_meshes(Scene& scene) {
   }
   for (Instance& instance : scene.instances) {
     const glm::dvec3& c = offsets[static_cast<size_t>(instance.mesh)];
-    instance.world = instance.world * glm::dmat4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, c.x, c.y, c.z, 1);
+    const glm::dmat4 moved(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, c.x, c.y, c.z, 1);
+    instance.world = instance.world * moved;
+    instance.offset = instance.offset * moved;
   }
   update_bounds(scene);
 }

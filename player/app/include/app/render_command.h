@@ -18,9 +18,11 @@ struct RenderOptions {
   std::string environment;  // --environment: an equirectangular HDR/EXR, or builtin:studio (empty: the studio)
   std::string output;       // PNG path
   std::string platform = "auto";
-  std::string dump_dir;  // empty: no dump
-  int frames = 1;        // frames rendered; times are the median over all but the first
-  int file_camera = -1;  // >= 0: view through the scene's camera of that index (--file-camera)
+  std::string dump_dir;           // empty: no dump
+  int frames = 1;                 // frames rendered; times are the median over all but the first
+  int file_camera = -1;           // >= 0: view through the scene's camera of that index (--file-camera)
+  double time = 0.0;              // --time: seconds into the scene's animations, the pose shown
+  std::string animation = "all";  // --animation: all, none, an index or a name
   // Light field output (--display): a display file; per-view PNGs; a quilt's panel image; the probe.
   std::string display, modules_dir, native_output;
   bool view_probe = false;

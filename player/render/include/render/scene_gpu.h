@@ -34,6 +34,9 @@ class SceneGpu {
     int material;
     glm::dmat4 world;
     glm::dvec3 centre;  // of the mesh's box, in the world: blended draws are sorted by it
+    int node = -1;      // the rig's node that moves it (scene::Instance), -1: nothing does
+    glm::dmat4 offset{1.0};
+    glm::dvec3 box_centre{0.0};  // of the mesh's box, in the mesh
   };
 
   // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().
@@ -54,6 +57,10 @@ class SceneGpu {
   // Grouped by G-buffer variant (one program switch per group), alpha-tested last: they lose early
   // depth rejection and are drawn over the depth the others have laid.
   const std::vector<Draw>& draws() const { return draws_; }
+  // An animated scene's node tree and animations (null: nothing moves), and the draws placed at
+  // the node transforms of a pose (scene::Pose::worlds() of this rig); allocates nothing.
+  const std::shared_ptr<const scene::Rig>& rig() const { return rig_; }
+  void pose(const std::vector<glm::dmat4>& node_worlds);
   // The draws of blended materials (alphaMode BLEND), drawn after the opaque image by the forward
   // pass; light field modules draw them in the G-buffer, alpha-tested at their cutoff.
   const std::vector<Draw>& blended_draws() const { return blended_; }
@@ -94,6 +101,7 @@ class SceneGpu {
   EnvironmentGpu environment_;
   gl::Buffer lights_;
   int light_count_ = 0;
+  std::shared_ptr<const scene::Rig> rig_;
 };
 
 }  // namespace render

@@ -11,6 +11,7 @@
 namespace scene {
 
 struct Environment;
+struct Rig;
 
 struct Vertex {
   glm::vec3 position;
@@ -76,6 +77,10 @@ struct Material {
 struct Instance {
   int mesh = 0;
   glm::dmat4 world{1.0};  // double: scenes may sit far from the origin
+  // In an animated scene: the rig's node that places the mesh (world = the node's world * offset),
+  // -1 where nothing moves it; offset: what the loader folded in after (recenter_meshes).
+  int node = -1;
+  glm::dmat4 offset{1.0};
 };
 
 // A light of the file (KHR_lights_punctual), placed by its node: a directional light shines along
@@ -131,6 +136,9 @@ struct Scene {
   // What lights it (scene/environment.h): given by whoever shows the scene (a playlist's
   // `environment`, --environment); null: the built-in studio.
   std::shared_ptr<const Environment> environment;
+  // The node tree and animations of a file that animates something (scene/animation.h); null:
+  // nothing moves. Bounds, cameras and lights are those of the file's rest pose.
+  std::shared_ptr<const Rig> rig;
   Bounds bounds;
   size_t triangle_count() const;
 };

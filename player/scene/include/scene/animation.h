@@ -1,0 +1,87 @@
+#pragma once
+// glTF animation of node transforms: the node tree of the shown scene, the file's animations
+// (translation, rotation and scale channels, STEP, LINEAR and CUBICSPLINE samplers), and the pose
+// of every node at a time. Skins and morph targets are not animated (the loader warns).
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace scene {
+
+enum class Interpolation { step, linear, cubic_spline };
+enum class AnimatedProperty { translation, rotation, scale };
+
+struct AnimationChannel {
+  int node = 0;  // index into Rig::nodes
+  AnimatedProperty property = AnimatedProperty::translation;
+  Interpolation interpolation = Interpolation::linear;
+  std::vector<float> times;  // seconds, strictly increasing
+  // xyz (translation, scale) or a quaternion as glTF writes it, x y z w; CUBICSPLINE: three per
+  // key, in-tangent, value, out-tangent.
+  std::vector<glm::vec4> values;
+};
+
+struct Animation {
+  std::string name;
+  std::vector<AnimationChannel> channels;
+  double duration = 0.0;  // the last key of any channel
+};
+
+// The shown scene's nodes, parents before children, and what moves them.
+struct Rig {
+  struct Node {
+    int parent = -1;
+    glm::dvec3 translation{0.0};
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+    glm::dvec3 scale{1.0};
+    bool uses_matrix = false;  // a node given by a matrix (glTF forbids animating it)
+    glm::dmat4 matrix{1.0};
+  };
+  std::vector<Node> nodes;
+  std::vector<Animation> animations;
+  // `selection`: an animation's index, kAllAnimations or kNoAnimation (the rest pose). The loop of
+  // the selection: its longest animation's duration.
+  static constexpr int kAllAnimations = -1;
+  static constexpr int kNoAnimation = -2;
+  double duration(int selection) const;
+};
+
+// A playlist's or the command line's `animation`: "all", "none", an index or a name. False, with
+// what was expected in `error`, for an index or a name the rig does not have (a scene without
+// animations has only "all" and "none").
+bool select_animation(const Rig* rig, const std::string& spec, int& selection, std::string& error);
+
+// A channel's value at `seconds` (clamped to its first and last keys): STEP holds a key, LINEAR
+// interpolates (rotations by slerp along the shorter arc), CUBICSPLINE is glTF's Hermite spline
+// (rotations normalised after).
+glm::dvec4 sample(const AnimationChannel& channel, double seconds);
+
+// The world transform of every node of a rig at a time, made without allocating once constructed.
+class Pose {
+ public:
+  explicit Pose(std::shared_ptr<const Rig> rig);
+  // Poses the nodes at `seconds` into the selection (wrapped around its duration); the nodes no
+  // channel of it moves keep their file transforms.
+  void at(int selection, double seconds);
+  const std::vector<glm::dmat4>& worlds() const { return worlds_; }
+  const Rig& rig() const { return *rig_; }
+
+ private:
+  struct Local {
+    glm::dvec3 translation;
+    glm::dquat rotation;
+    glm::dvec3 scale;
+  };
+  std::shared_ptr<const Rig> rig_;
+  std::vector<Local> locals_;
+  std::vector<glm::dmat4> worlds_;
+};
+
+// Places `scene`'s instances as `pose` (of scene.rig) has posed its nodes, and its bounds around them.
+struct Scene;
+void pose_instances(Scene& scene, const Pose& pose);
+
+}  // namespace scene

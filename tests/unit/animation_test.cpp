@@ -1,8 +1,8 @@
 // Node animation: the sampler against closed forms (a cubic the Hermite spline must reproduce,
 // slerp at constant angular speed along the shorter arc, STEP and LINEAR), poses through the node
 // tree, looping, and the loader's reading and refusals.
-#include "gltf_fixture.h"
 #include "scene/animation.h"
+#include "gltf_fixture.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -10,8 +10,8 @@
 
 namespace {
 
-scene::AnimationChannel channel(scene::AnimatedProperty property, scene::Interpolation interpolation,
-                                std::vector<float> times, std::vector<glm::vec4> values) {
+scene::AnimationChannel channel(scene::AnimatedProperty property, scene::Interpolation interpolation, std::vector<float> times,
+                                std::vector<glm::vec4> values) {
   scene::AnimationChannel c;
   c.property = property;
   c.interpolation = interpolation;
@@ -31,7 +31,8 @@ double angle_about(const glm::dvec4& q, glm::dvec3 axis) {
 
 TEST(AnimationSampler, StepHoldsAndLinearInterpolatesAndTheEndsClamp) {
   using scene::AnimatedProperty, scene::Interpolation;
-  const auto step = channel(AnimatedProperty::translation, Interpolation::step, {1, 2, 4}, {{0, 0, 0, 0}, {2, 0, 0, 0}, {6, 0, 0, 0}});
+  const auto step =
+      channel(AnimatedProperty::translation, Interpolation::step, {1, 2, 4}, {{0, 0, 0, 0}, {2, 0, 0, 0}, {6, 0, 0, 0}});
   EXPECT_EQ(scene::sample(step, 1.99).x, 0.0);
   EXPECT_EQ(scene::sample(step, 2.0).x, 2.0);
   EXPECT_EQ(scene::sample(step, 3.9).x, 2.0);
@@ -126,8 +127,8 @@ TEST(AnimationPose, NodesFollowTheirParentsAndTheSelectionLoops) {
 class GltfAnimation : public GltfLoader {
  protected:
   // triangle() under a parent node, with one animation of `path` on the parent: keys at `times`.
-  json animated(const std::string& path, const std::string& interpolation, std::vector<float> times,
-                std::vector<float> outputs, int components) {
+  json animated(const std::string& path, const std::string& interpolation, std::vector<float> times, std::vector<float> outputs,
+                int components) {
     json doc = triangle();
     doc["nodes"] = {{{"children", {1}}, {"translation", {0, 0, 0}}}, {{"mesh", 0}, {"translation", {1, 0, 0}}}};
     std::vector<unsigned char> bytes;

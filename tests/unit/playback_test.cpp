@@ -200,6 +200,21 @@ TEST(Playlist, SceneFilesNeedNotExist) {
   EXPECT_EQ(pl.items[0].scene, real(test_dir + "/missing.glb"));
 }
 
+TEST(Playlist, AnimationKeys) {
+  const Playlist pl = parse_ok(
+      "[[item]]\nscene = \"a.glb\"\n"
+      "[[item]]\nscene = \"a.glb\"\nanimation = \"Walk\"\nanimation_speed = 0.5\n"
+      "[[item]]\nscene = \"a.glb\"\nanimation = 2\n"
+      "[[item]]\nscene = \"a.glb\"\nanimation = \"none\"\n");
+  ASSERT_EQ(pl.items.size(), 4u);
+  EXPECT_EQ(pl.items[0].animation, "all");  // the default: every animation, as authored
+  EXPECT_EQ(pl.items[0].animation_speed, 1.0);
+  EXPECT_EQ(pl.items[1].animation, "Walk");
+  EXPECT_EQ(pl.items[1].animation_speed, 0.5);
+  EXPECT_EQ(pl.items[2].animation, "2");
+  EXPECT_EQ(pl.items[3].animation, "none");
+}
+
 TEST(Playlist, FailureLeavesOutputUnchanged) {
   Playlist pl = playlist_from_scenes({"keep.glb"}, 3, 4);
   std::string error;
@@ -248,11 +263,18 @@ const ErrorCase error_cases[] = {
     {"MissingScene", "loop = true\n\n[[item]]\nduration = 3\n",
      "3:1: item[0].scene: expected a path or builtin:NAME, got nothing"},
     {"SceneNotString", "[[item]]\nscene = 3\n", "2:9: item[0].scene: expected a path or builtin:NAME, got an integer"},
+    {"AnimationNegative", ITEM "animation = -1\n",
+     "3:13: item[0].animation: expected \"all\", \"none\", a name or an index >= 0, got -1"},
+    {"AnimationTable", ITEM "animation = {}\n",
+     "3:13: item[0].animation: expected \"all\", \"none\", a name or an index >= 0, got a table"},
+    {"AnimationSpeedNegative", ITEM "animation_speed = -2\n",
+     "3:19: item[0].animation_speed: expected a number >= 0 (1: as authored, 0: held at the start), got -2"},
     {"SceneEmpty", "[[item]]\nscene = \"\"\n", "2:9: item[0].scene: expected a path or builtin:NAME, got an empty string"},
     {"BuiltinWithoutName", "[[item]]\nscene = \"builtin:\"\n",
      "2:9: item[0].scene: expected a name after builtin:, got \"builtin:\""},
     {"UnknownItemKey", ITEM "sound = \"x.ogg\"\n",
-     "3:1: item[0].sound: expected one of scene, duration, camera, ao, background, display, environment, got an unknown key"},
+     "3:1: item[0].sound: expected one of scene, duration, camera, ao, background, display, environment, animation, "
+     "animation_speed, got an unknown key"},
     {"DurationZero", ITEM "duration = 0\n", "3:12: item[0].duration: expected a number of seconds > 0, got 0"},
     {"DurationString", ITEM "duration = \"8\"\n", "3:12: item[0].duration: expected a number of seconds > 0, got a string"},
     {"DurationInfinite", ITEM "duration = inf\n", "3:12: item[0].duration: expected a number of seconds > 0, got inf"},

@@ -391,7 +391,10 @@ bool read_settings(Parser& p, const toml::table& t, const std::string& prefix, c
 bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const toml::table& t, std::size_t index, Item& item) {
   const std::string prefix = "item[" + std::to_string(index) + "].";
   item.line = static_cast<int>(t.source().begin.line);
-  if (!p.known_keys(t, prefix, {"scene", "duration", "camera", "ao", "background", "display", "environment"})) return false;
+  if (!p.known_keys(
+          t, prefix,
+          {"scene", "duration", "camera", "ao", "background", "display", "environment", "animation", "animation_speed"}))
+    return false;
   const toml::node* scene = t.get("scene");
   if (!scene) return p.fail(t.source(), prefix + "scene", "a path or builtin:NAME", "nothing");
   if (!read_path(p, paths, *scene, prefix + "scene", true, item.scene)) return false;
@@ -414,6 +417,24 @@ bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const
   if (const toml::node* d = t.get("display")) {
     if (!read_path(p, paths, *d, prefix + "display", false, item.display)) return false;
   }
+  if (const toml::node* a = t.get("animation")) {
+    // Which animation is checked against the scene once it is loaded; here only its form.
+    if (const auto index = a->as_integer()) {
+      if (index->get() < 0)
+        return p.fail(a->source(), prefix + "animation", "\"all\", \"none\", a name or an index >= 0", describe(*a));
+      item.animation = std::to_string(index->get());
+    } else if (const auto name = a->as_string()) {
+      if (name->get().empty())
+        return p.fail(a->source(), prefix + "animation", "\"all\", \"none\", a name or an index >= 0", "\"\"");
+      item.animation = name->get();
+    } else {
+      return p.fail(a->source(), prefix + "animation", "\"all\", \"none\", a name or an index >= 0", type_of(*a));
+    }
+  }
+  if (!p.number(
+          t, prefix, "animation_speed", "a number >= 0 (1: as authored, 0: held at the start)", [](double v) { return v >= 0; },
+          item.animation_speed))
+    return false;
   item.environment = options.default_environment;
   if (const toml::node* e = t.get("environment")) {
     if (!read_path(p, paths, *e, prefix + "environment", true, item.environment)) return false;

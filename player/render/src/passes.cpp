@@ -277,7 +277,10 @@ bool ao_passes(const PassContext& context) {
   // the temporal average has all its frames. Light field modules share one set of targets, so each
   // module's AO is computed anew.
   const bool temporal = targets.temporal();
-  const bool still = targets.have_ao && view.view == targets.ao_view && view.projection == targets.ao_projection;
+  // An animation that moved the scene is motion as much as a camera's: history is trusted for
+  // fewer frames, and the AO is not kept.
+  const bool still = targets.have_ao && view.view == targets.ao_view && view.projection == targets.ao_projection &&
+                     context.scene.pose_version() == targets.ao_pose_version;
   targets.reused_ao =
       settings.reuse_static_ao && !view.module && still && (!temporal || targets.still_frames >= settings.history);
   if (targets.reused_ao) return false;
@@ -360,6 +363,7 @@ bool ao_passes(const PassContext& context) {
   targets.ao_view = view.view;
   targets.ao_projection = view.projection;
   targets.ao_far = view.far;
+  targets.ao_pose_version = context.scene.pose_version();
   targets.have_ao = true;
   ++targets.ao_frame;
   return true;

@@ -237,12 +237,17 @@ void SceneGpu::finish() {
 }
 
 void SceneGpu::pose(const std::vector<glm::dmat4>& node_worlds) {
+  bool moved = false;
   for (std::vector<Draw>* draws : {&draws_, &blended_})
     for (Draw& draw : *draws) {
       if (draw.node < 0 || static_cast<size_t>(draw.node) >= node_worlds.size()) continue;
-      draw.world = node_worlds[static_cast<size_t>(draw.node)] * draw.offset;
+      const glm::dmat4 world = node_worlds[static_cast<size_t>(draw.node)] * draw.offset;
+      if (world == draw.world) continue;
+      draw.world = world;
       draw.centre = glm::dvec3(draw.world * glm::dvec4(draw.box_centre, 1.0));
+      moved = true;
     }
+  if (moved) ++pose_version_;
 }
 
 bool SceneGpu::upload(const scene::Scene& scene, const gl::Caps& caps, std::string& error) {

@@ -63,7 +63,8 @@ bool select_animation(const Rig* rig, const std::string& spec, int& selection, s
     }
   std::string names;
   for (size_t i = 0; i < count; ++i) names += (i ? ", \"" : "\"") + rig->animations[i].name + "\"";
-  error = "no animation named \"" + spec + "\" (expected all, none, an index or one of: " + (names.empty() ? "none in the scene" : names) + ")";
+  error = "no animation named \"" + spec +
+          "\" (expected all, none, an index or one of: " + (names.empty() ? "none in the scene" : names) + ")";
   return false;
 }
 

@@ -76,8 +76,8 @@ std::vector<Animation> read_animations(Document& document, const std::vector<int
       const std::string output_field = sampler_field + ".output";
       if (out.property == AnimatedProperty::rotation) {
         // glTF allows normalised integers for rotations (KHR_mesh_quantization's pipelines write them).
-        const std::vector<Format> formats = {{kFloat, false},     {kByte, true},          {kUnsignedByte, true},
-                                             {kShort, true},      {kUnsignedShort, true}};
+        const std::vector<Format> formats = {
+            {kFloat, false}, {kByte, true}, {kUnsignedByte, true}, {kShort, true}, {kUnsignedShort, true}};
         for (const glm::vec4& q : read_floats<4>(document, sampler.output, output_field, formats)) out.values.push_back(q);
       } else {
         for (const glm::vec3& v : read_floats<3>(document, sampler.output, output_field, {{kFloat, false}}))

@@ -233,8 +233,10 @@ void PlayLoop::draw(const playback::Cue& cue) {
   if (cue.item >= 0) {
     const CachedScene* scene = p_.scenes.ready(cue.item);
     shown = scene != nullptr ? KioskState::Shown::scene : KioskState::Shown::loading;
-    if (scene != nullptr)
+    if (scene != nullptr) {
+      p_.scenes.pose(cue.item, cue.item_time);
       p_.drawer.prepare(cue, p_.scenes.key_of(cue.item), *scene, playlist_->items[static_cast<size_t>(cue.item)], p_.status);
+    }
   }
   if (p_.kiosk.frame_drawn(shown, timeline_->paused())) update_status(true);  // sets the LEDs too
 

@@ -15,7 +15,14 @@ SceneCache::SceneCache(Loader& loader, const gl::Caps& caps, StatusReporter& sta
 
 void SceneCache::set_playlist(const playback::Playlist& playlist, playback::Timeline* timeline) {
   keys_.clear();
-  for (const playback::Item& item : playlist.items) keys_.push_back(load_key(item));
+  animation_specs_.clear();
+  animation_speeds_.clear();
+  for (const playback::Item& item : playlist.items) {
+    keys_.push_back(load_key(item));
+    animation_specs_.push_back(item.animation);
+    animation_speeds_.push_back(item.animation_speed);
+  }
+  selections_.assign(keys_.size(), kUnresolved);
   const std::unordered_set<std::string> used(keys_.begin(), keys_.end());
   for (auto it = scenes_.begin(); it != scenes_.end();) it = used.count(it->first) > 0 ? std::next(it) : scenes_.erase(it);
   if (timeline == nullptr) return;
@@ -83,6 +90,9 @@ bool SceneCache::step_uploads(const std::string& shown) {
     }
     if (scene.gpu) ++swaps_;
     scene.gpu = std::move(scene.incoming);
+    scene.pose = scene.gpu->rig() ? std::make_unique<scene::Pose>(scene.gpu->rig()) : nullptr;
+    for (size_t i = 0; i < keys_.size(); ++i)
+      if (keys_[i] == key) selections_[i] = kUnresolved;  // a new version may name its animations anew
     scene.bounds = scene.incoming_bounds;
     scene.cameras = std::move(scene.incoming_cameras);
     scene.display = scene.incoming_display;
@@ -102,6 +112,25 @@ bool SceneCache::settled(int item) const {
   if (found == scenes_.end()) return false;
   const CachedScene& scene = found->second;
   return !scene.error.empty() || (scene.gpu && scene.gpu->ready() && !scene.incoming);
+}
+
+void SceneCache::pose(int item, double item_time) {
+  const size_t i = static_cast<size_t>(item);
+  const auto found = scenes_.find(keys_[i]);
+  if (found == scenes_.end() || !found->second.gpu) return;
+  CachedScene& scene = found->second;
+  int& selection = selections_[i];
+  if (selection == kUnresolved) {
+    std::string error;
+    const scene::Rig* rig = scene.gpu->rig().get();
+    if (!scene::select_animation(rig, animation_specs_[i], selection, error)) {
+      status_.report(keys_[i] + ": item[" + std::to_string(i) + "].animation: " + error + "; the scene is shown at rest");
+      selection = scene::Rig::kNoAnimation;
+    }
+  }
+  if (!scene.pose) return;
+  scene.pose->at(selection, item_time * animation_speeds_[i]);
+  scene.gpu->pose(scene.pose->worlds());
 }
 
 void SceneCache::reload_all() {

@@ -7,6 +7,7 @@
 #include "loader.h"
 #include "playback/timeline.h"
 #include "render/scene_gpu.h"
+#include "scene/animation.h"
 #include "scene/scene.h"
 
 #include <cstdint>
@@ -33,6 +34,7 @@ struct CachedScene {
   std::string error;                  // failed to load: the item is skipped
   std::vector<std::string> warnings;  // loaded anyway (a texture drawn white): in the status while it plays
   bool requested = false;
+  std::unique_ptr<scene::Pose> pose;  // the animated scene's nodes (null: nothing moves)
 };
 
 class SceneCache {
@@ -61,6 +63,11 @@ class SceneCache {
   // version on its way.
   bool settled(int item) const;
 
+  // Poses the item's scene at `item_time` seconds into the item, as its animation keys say
+  // (resolved against the scene once, a key it lacks reported and the rest pose shown). Allocates
+  // nothing once resolved.
+  void pose(int item, double item_time);
+
   // SIGHUP: every scene again. A changed file: the scenes whose scene or display it is.
   void reload_all();
   void reload(const std::string& path);
@@ -79,6 +86,11 @@ class SceneCache {
   std::ostream& err_;
   std::map<std::string, CachedScene> scenes_;
   std::vector<std::string> keys_;  // load_key() of each playlist item
+  // Each item's animation key and speed, and the animation it resolved to in its scene's rig.
+  static constexpr int kUnresolved = -3;
+  std::vector<std::string> animation_specs_;
+  std::vector<double> animation_speeds_;
+  std::vector<int> selections_;
   std::uint64_t swaps_ = 0;
 };
 

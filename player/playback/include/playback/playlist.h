@@ -57,7 +57,11 @@ struct Item {
   // What lights the scene: an equirectangular HDR/EXR resolved like `scene`, or builtin:studio;
   // empty: the player's default (--environment, else the built-in studio).
   std::string environment;
-  int line = 0;  // where the item's table starts, for messages
+  // The scene's animations shown: "all" (together, looping over the longest), "none" (the rest
+  // pose), a name, or an index as text; checked against the scene when it has loaded.
+  std::string animation = "all";
+  double animation_speed = 1.0;  // animation seconds per item second
+  int line = 0;                  // where the item's table starts, for messages
 };
 
 struct Playlist {

@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -61,6 +62,8 @@ class SceneGpu {
   // the node transforms of a pose (scene::Pose::worlds() of this rig); allocates nothing.
   const std::shared_ptr<const scene::Rig>& rig() const { return rig_; }
   void pose(const std::vector<glm::dmat4>& node_worlds);
+  // Counts the poses that moved a draw: the AO of an earlier count is not this scene's any more.
+  std::uint64_t pose_version() const { return pose_version_; }
   // The draws of blended materials (alphaMode BLEND), drawn after the opaque image by the forward
   // pass; light field modules draw them in the G-buffer, alpha-tested at their cutoff.
   const std::vector<Draw>& blended_draws() const { return blended_; }
@@ -102,6 +105,7 @@ class SceneGpu {
   gl::Buffer lights_;
   int light_count_ = 0;
   std::shared_ptr<const scene::Rig> rig_;
+  std::uint64_t pose_version_ = 0;
 };
 
 }  // namespace render

@@ -6,6 +6,7 @@
 #include "render/programs.h"
 #include "render/settings.h"
 
+#include <cstdint>
 #include <string>
 
 namespace render {
@@ -69,6 +70,7 @@ class ViewTargets {
   // History: the AO of the last frame stays valid while view and projection do not change.
   glm::dmat4 ao_view{0.0}, ao_projection{0.0};
   double ao_far = 0.0;
+  std::uint64_t ao_pose_version = 0;  // the scene's pose the AO was computed for (SceneGpu::pose_version)
   bool have_ao = false, reused_ao = false;
   unsigned ao_frame = 0;  // frames computed since the history began: the sample turn's sequence index
   int still_frames = 0;   // of them, how many in a row with this view (the average's frames, capped)

@@ -1,7 +1,7 @@
 // An animated scene on a real context: a pose moves the draws of the nodes it moves, the frame
 // shows them there, and the AO of the old pose is not kept as if the scene stood still.
-#include "harness.h"
 #include "scene/animation.h"
+#include "harness.h"
 #include "scene/procedural.h"
 
 namespace {

@@ -161,6 +161,14 @@ TEST_F(GltfMaterial, MetallicRoughnessNormalOcclusionAndEmissiveAreRead) {
     EXPECT_NEAR(glm::dot(glm::vec3(t), glm::vec3(0, 0, 1)), 0.0f, 1e-5f);
     EXPECT_EQ(std::abs(t.w), 1.0f);
   }
+  // A scale the shader's floats cannot carry through (its square overflows) is held at 10^4, with a warning.
+  m["normalTexture"]["scale"] = -1e30;
+  scene::Scene steep;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), steep, report)) << report.error;
+  EXPECT_EQ(steep.materials.at(1).normal_scale, -1e4f);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("materials[0].normalTexture.scale: "), std::string::npos);
 }
 
 TEST_F(GltfMaterial, EmissiveStrengthScalesTheEmission) {

@@ -123,7 +123,10 @@ void draw_scene(const PassContext& context, bool depth_only) {
       // Every variant a scene's materials need was compiled when the view was configured for it.
       const RasterProgram* program =
           depth_only ? (masked ? &masked_depth_program : &depth_program) : programs.gbuffer(bits, modules);
-      if (program == nullptr) continue;
+      if (program == nullptr) {
+        context.report_missing_program("g-buffer: a material's program was not prepared; its draws are skipped");
+        continue;
+      }
       if (program != bound) {
         gl::api.UseProgram(program->program->id());
         gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
@@ -163,7 +166,10 @@ void blend_pass(const PassContext& context, bool srgb) {
     const unsigned bits =
         material_features(scene.materials()[static_cast<size_t>(draw.material)], untextured_variant) & ~features::alpha_mask;
     const RasterProgram* program = context.programs.forward(bits, srgb);
-    if (program == nullptr) continue;  // prepared with the scene (prepare_material_programs)
+    if (program == nullptr) {  // prepared with the scene (prepare_material_programs)
+      context.report_missing_program("blend: a blended material's program was not prepared; its draws are skipped");
+      continue;
+    }
     if (program != bound) {
       gl::api.UseProgram(program->program->id());
       gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));

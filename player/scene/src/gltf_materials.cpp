@@ -89,6 +89,13 @@ int MaterialReader::material(int index, const std::string& where) {
   if (material.normal.present() && material.normal.texture == white_) material.normal = TextureSlot{};
   if (!std::isfinite(normal.scale)) fail(field + ".normalTexture.scale: expected a finite number");
   material.normal_scale = static_cast<float>(normal.scale);
+  // Beyond 10^4 the mapped normal lies in the surface already; larger values would overflow the
+  // shader's float arithmetic into NaN normals.
+  if (std::abs(normal.scale) > 1e4) {
+    material.normal_scale = static_cast<float>(std::copysign(1e4, normal.scale));
+    report_.warnings.push_back(field + ".normalTexture.scale: " + std::to_string(normal.scale) + " is used as " +
+                               std::to_string(material.normal_scale));
+  }
   const tinygltf::OcclusionTextureInfo& occlusion = source.occlusionTexture;
   material.occlusion =
       slot(occlusion.index, occlusion.texCoord, info_of(json_material, "occlusionTexture"), field + ".occlusionTexture", false);

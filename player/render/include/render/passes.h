@@ -35,6 +35,11 @@ struct PassContext {
   gl::FrameTimer* timer = nullptr;    // null: untimed
   std::string* gl_error = nullptr;    // the first GL error of the frame, when settings.check_errors
   void finish_pass(Pass pass) const;  // error check and timer mark
+  // A draw skipped for want of its program (prepare_material_programs was not run for this
+  // scene): kept as the frame's error, so it shows in the status rather than as a missing part.
+  void report_missing_program(const char* what) const {
+    if (gl_error != nullptr && gl_error->empty()) *gl_error = what;
+  }
 };
 
 // Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), and the

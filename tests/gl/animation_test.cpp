@@ -32,6 +32,7 @@ TEST_P(Animated, APoseMovesItsNodesDrawsAndTheAoIsComputedAnew) {
   scene::Pose pose(rig);
   pose.at(scene::Rig::kAllAnimations, 0.0);
   scene::pose_instances(built, pose);
+  scene::update_bounds(built);
   render::FrameSettings settings;
   settings.width = settings.height = 96;
   settings.check_errors = true;

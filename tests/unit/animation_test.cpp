@@ -167,7 +167,13 @@ TEST_F(GltfAnimation, ChannelsMoveTheRigsNodesAndTheRenderPoseFollows) {
   scene::pose_instances(loaded, pose);
   const glm::dvec3 posed_corner = glm::dvec3(loaded.instances[0].world * glm::dvec4(glm::dvec3(loaded.meshes[0].min), 1.0));
   EXPECT_NEAR(glm::distance(posed_corner - rest_corner, glm::dvec3(0, 2, 0)), 0.0, 1e-9);
-  EXPECT_NEAR(loaded.bounds.min.y, 2.0, 1e-6);  // the bounds follow the pose
+  // The bounds hold the whole animation (the triangle's y from 0 to 1, carried up to 4), so every
+  // pose is framed alike and nothing moves out of view.
+  EXPECT_NEAR(loaded.bounds.max.y, 1.0, 1e-6);
+  scene::include_animation_in_bounds(loaded);
+  EXPECT_NEAR(loaded.bounds.min.y, 0.0, 1e-6);
+  EXPECT_GT(loaded.bounds.max.y, 4.8);
+  EXPECT_EQ(loaded.instances[0].world, pose.worlds()[1] * loaded.instances[0].offset);  // the instances are kept
   // A static file keeps no rig.
   EXPECT_FALSE(load_ok(write(triangle())).rig);
 }

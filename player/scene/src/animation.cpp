@@ -71,7 +71,27 @@ bool select_animation(const Rig* rig, const std::string& spec, int& selection, s
 void pose_instances(Scene& scene, const Pose& pose) {
   for (Instance& instance : scene.instances)
     if (instance.node >= 0) instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
-  update_bounds(scene);
+}
+
+void include_animation_in_bounds(Scene& scene) {
+  if (!scene.rig || scene.rig->animations.empty()) return;
+  constexpr int kSamples = 32;
+  std::vector<glm::dmat4> rest;
+  for (const Instance& instance : scene.instances) rest.push_back(instance.world);
+  Bounds all = scene.bounds;
+  Pose pose(scene.rig);
+  for (int selection = Rig::kAllAnimations; selection < static_cast<int>(scene.rig->animations.size()); ++selection) {
+    const double duration = scene.rig->duration(selection);
+    for (int k = 0; k < kSamples; ++k) {
+      pose.at(selection, duration * k / kSamples);
+      pose_instances(scene, pose);
+      update_bounds(scene);
+      all.min = glm::min(all.min, scene.bounds.min);
+      all.max = glm::max(all.max, scene.bounds.max);
+    }
+  }
+  for (size_t i = 0; i < rest.size(); ++i) scene.instances[i].world = rest[i];
+  scene.bounds = all;
 }
 
 glm::dvec4 sample(const AnimationChannel& channel, double seconds) {

@@ -1,5 +1,7 @@
 #include "scene/load.h"
 
+#include "scene/animation.h"
+
 #include "scene/environment.h"
 #include "scene/gltf_loader.h"
 #include "scene/procedural.h"
@@ -48,6 +50,7 @@ bool load(const std::string& spec, Scene& out, std::string& error, std::ostream&
     return false;
   }
   recenter_meshes(out);
+  include_animation_in_bounds(out);
   for (const std::string& warning : report.warnings) log << "warning: " << spec << ": " << warning << "\n";
   return true;
 }

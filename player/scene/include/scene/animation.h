@@ -80,8 +80,12 @@ class Pose {
   std::vector<glm::dmat4> worlds_;
 };
 
-// Places `scene`'s instances as `pose` (of scene.rig) has posed its nodes, and its bounds around them.
 struct Scene;
+// Places `scene`'s instances as `pose` (of scene.rig) has posed its nodes. The bounds stay those
+// of the whole animation (include_animation_in_bounds), so every pose is framed alike.
 void pose_instances(Scene& scene, const Pose& pose);
+// Widens scene.bounds to hold every pose of its animations (each alone and all together, sampled
+// 32 times over their loop), so a camera framing the bounds keeps every moving part in view.
+void include_animation_in_bounds(Scene& scene);
 
 }  // namespace scene

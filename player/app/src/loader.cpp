@@ -1,6 +1,7 @@
 #include "loader.h"
 
 #include "render/light_field.h"
+#include "scene/environment.h"
 #include "scene/load.h"
 
 #include <sys/eventfd.h>
@@ -83,6 +84,15 @@ bool Loader::environment(const std::string& spec, std::shared_ptr<const scene::E
 }
 
 void Loader::run() {
+  bool studio_lights_by_default = false;
+  {
+    std::unique_lock lock(mutex_);
+    studio_lights_by_default =
+        playlist_options_.default_environment.empty() || playlist_options_.default_environment == "builtin:studio";
+  }
+  // Most items are lit by the built-in studio: prepared now, while the GL context opens and its
+  // programs compile, instead of after the first scene is asked for (seconds on a slow board).
+  if (studio_lights_by_default) scene::studio_environment();
   for (;;) {
     Result job;
     scene::LoadOptions scene_options;

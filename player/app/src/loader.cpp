@@ -90,8 +90,10 @@ void Loader::run() {
     studio_lights_by_default =
         playlist_options_.default_environment.empty() || playlist_options_.default_environment == "builtin:studio";
   }
-  // Most items are lit by the built-in studio: prepared now, while the GL context opens and its
-  // programs compile, instead of after the first scene is asked for (seconds on a slow board).
+  // Most items are lit by the built-in studio, which the renderer takes at the first upload:
+  // prepared here first, while the GL context opens and its programs compile, so the frame loop
+  // finds it ready instead of preparing it (a third of a second here, seconds on a slow board).
+  // Where this has not finished by then, the upload waits for it, as it always could.
   if (studio_lights_by_default) scene::studio_environment();
   for (;;) {
     Result job;

@@ -15,12 +15,8 @@ constexpr std::string_view kBuiltinPrefix = "builtin:";
 
 bool load_environment_spec(const std::string& spec, std::shared_ptr<const Environment>& out, std::string& error) {
   out.reset();
-  if (spec.empty() || spec == "builtin:studio") {
-    // Prepared here, on the caller's (the loader's) thread, the first time: the renderer then only
-    // uploads it. The studio lives for the whole process; the pointer shares it, owning nothing.
-    out = std::shared_ptr<const Environment>(std::shared_ptr<const Environment>(), &studio_environment());
-    return true;
-  }
+  // Null: the renderer's built-in studio (studio_environment(), prepared once per process).
+  if (spec.empty() || spec == "builtin:studio") return true;
   if (spec.rfind(kBuiltinPrefix, 0) == 0) {
     error = spec + ": no such built-in environment (expected builtin:studio)";
     return false;

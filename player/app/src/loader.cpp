@@ -1,7 +1,6 @@
 #include "loader.h"
 
 #include "render/light_field.h"
-#include "scene/environment.h"
 #include "scene/load.h"
 
 #include <sys/eventfd.h>
@@ -84,17 +83,6 @@ bool Loader::environment(const std::string& spec, std::shared_ptr<const scene::E
 }
 
 void Loader::run() {
-  bool studio_lights_by_default = false;
-  {
-    std::unique_lock lock(mutex_);
-    studio_lights_by_default =
-        playlist_options_.default_environment.empty() || playlist_options_.default_environment == "builtin:studio";
-  }
-  // Most items are lit by the built-in studio, which the renderer takes at the first upload:
-  // prepared here first, while the GL context opens and its programs compile, so the frame loop
-  // finds it ready instead of preparing it (a third of a second here, seconds on a slow board).
-  // Where this has not finished by then, the upload waits for it, as it always could.
-  if (studio_lights_by_default) scene::studio_environment();
   for (;;) {
     Result job;
     scene::LoadOptions scene_options;

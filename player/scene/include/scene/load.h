@@ -14,8 +14,8 @@ namespace scene {
 bool load(const std::string& spec, Scene& out, std::string& error, std::ostream& log, const LoadOptions& options = {});
 
 // An environment by spec: "builtin:studio" or empty (null: the built-in studio, which the renderer
-// uses and `play`'s loader prepares ahead, as soon as it starts), or an equirectangular HDR/EXR
-// file (scene/environment.h), prepared here. False and why.
+// prepares once per process), or an equirectangular HDR/EXR file (scene/environment.h), prepared
+// here. False and why.
 bool load_environment_spec(const std::string& spec, std::shared_ptr<const Environment>& out, std::string& error);
 
 }  // namespace scene

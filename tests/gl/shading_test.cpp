@@ -36,30 +36,44 @@ scene::Texture texel(uint8_t r, uint8_t g, uint8_t b, bool srgb = false) {
   return texture;
 }
 
-// A sphere of one material under `environment`, lit by nothing else, without AO.
+// What lights a test's sphere: the environment, the key light (0: none) and the scene's own lights.
+struct Lighting {
+  Lighting(std::shared_ptr<const scene::Environment> environment_, float key_light_ = 0.0f,
+           std::vector<scene::Light> lights_ = {})
+      : environment(std::move(environment_)), key_light(key_light_), lights(std::move(lights_)) {}
+  std::shared_ptr<const scene::Environment> environment;
+  float key_light;
+  std::vector<scene::Light> lights;
+};
+
+// A sphere of one material, lit by `lighting` and nothing else, without AO: the image, and what
+// the CPU needs to evaluate each pixel again (the G-buffer's depth and normals, the camera).
 struct Shot {
   std::vector<uint8_t> color;
   std::vector<float> depth;
+  std::vector<glm::vec3> normals;
+  glm::dmat4 view_to_world{1.0}, projection{1.0};
 };
 
-Shot sphere_under(const std::string& platform, const scene::Material& material,
-                  std::shared_ptr<const scene::Environment> environment, float key_light = 0.0f,
-                  std::vector<scene::Texture> textures = {}) {
+Shot sphere_under(const std::string& platform, const scene::Material& material, Lighting lighting,
+                  std::vector<scene::Texture> textures = {}, int segments = 48) {
   scene::Scene built;
   built.materials = {material};
   built.textures = std::move(textures);
-  scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 48, 0));
-  built.environment = std::move(environment);
+  scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, segments, 0));
+  built.environment = std::move(lighting.environment);
+  built.lights = std::move(lighting.lights);
   scene::update_bounds(built);
   render::FrameSettings settings;
   settings.width = settings.height = kSide;
   settings.check_errors = true;
   settings.ao = false;
-  settings.key_light = key_light;
+  settings.key_light = lighting.key_light;
   Harness h;
   EXPECT_TRUE(h.start(platform, std::move(built), settings));
   EXPECT_EQ(h.renderer.gl_error(), "");
-  return {h.renderer.read_color(), h.renderer.read_linear_depth()};
+  return {h.renderer.read_color(), h.renderer.read_linear_depth(), h.renderer.read_view_normals(), glm::inverse(h.camera.view()),
+          h.camera.projection()};
 }
 
 // Every sphere pixel's linear value per channel, against `expected`: the largest relative error.
@@ -98,7 +112,7 @@ TEST_P(Shading, WhiteFurnacesShadeToTheEnvironment) {
     material.metallic = c.metallic;
     material.roughness = c.roughness;
     size_t pixels = 0;
-    const double error = worst_relative_error(sphere_under(GetParam(), material, white), 0.5, &pixels);
+    const double error = worst_relative_error(sphere_under(GetParam(), material, {white}), 0.5, &pixels);
     EXPECT_GT(pixels, size_t{kSide * kSide / 5}) << c.what;  // the framed sphere covers about a quarter
     EXPECT_LT(error, 0.02) << c.what;
   }
@@ -112,9 +126,9 @@ TEST_P(Shading, EmissionIsAddedAsItIs) {
   material.base_color = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   material.metallic = 0.0f;
   material.emissive = glm::vec3(0.25f);
-  EXPECT_LT(worst_relative_error(sphere_under(GetParam(), material, black), 0.25), 0.02);
+  EXPECT_LT(worst_relative_error(sphere_under(GetParam(), material, {black}), 0.25), 0.02);
   material.emissive = glm::vec3(0.0f);
-  const Shot dark = sphere_under(GetParam(), material, black);
+  const Shot dark = sphere_under(GetParam(), material, {black});
   EXPECT_EQ(worst_relative_error(dark, 1.0), 1.0);  // every channel 0: relative error exactly 1
 }
 
@@ -179,7 +193,7 @@ TEST_P(Shading, TheOcclusionTextureDarkensOnlyTheEnvironmentLight) {
     material.metallic = 0.0f;
     material.occlusion.texture = 0;
     material.occlusion_strength = 1.0f;
-    const Shot shot = sphere_under(GetParam(), material, white, key, {texel(0, 0, 0)});
+    const Shot shot = sphere_under(GetParam(), material, {white, key}, {texel(0, 0, 0)});
     const auto& color = shot.color;
     const auto& depth = shot.depth;
     int brightest = 0;
@@ -248,28 +262,14 @@ TEST_P(Shading, ADirectionalEnvironmentShadesAsTheCpuEvaluatesIt) {
   for (const Case c :
        {Case{"gold-like metal", {1.0f, 0.5f, 0.25f}, 1.0f, 0.4f}, Case{"rough blue dielectric", {0.2f, 0.4f, 0.8f}, 0.0f, 0.9f},
         Case{"polished grey dielectric", {0.5f, 0.5f, 0.5f}, 0.0f, 0.1f}}) {
-    scene::Scene built;
+    SCOPED_TRACE(c.what);
     scene::Material material;
     material.base_color = glm::vec4(c.base_color, 1.0f);
     material.metallic = c.metallic;
     material.roughness = c.roughness;
-    built.materials = {material};
-    scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 64, 0));
-    built.environment = environment;
-    scene::update_bounds(built);
-    render::FrameSettings settings;
-    settings.width = settings.height = kSide;
-    settings.check_errors = true;
-    settings.ao = false;
-    settings.key_light = 0.0f;
-    Harness h;
-    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings)) << c.what;
-    EXPECT_EQ(h.renderer.gl_error(), "");
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const std::vector<float> depth = h.renderer.read_linear_depth();
-    const std::vector<glm::vec3> normals = h.renderer.read_view_normals();
-    const glm::dmat4 view_to_world = glm::inverse(h.camera.view());
-    const glm::dmat4 clip_to_view = glm::inverse(h.camera.projection());
+    const Shot shot = sphere_under(GetParam(), material, {environment}, {}, 64);
+    const auto& [color, depth, normals, view_to_world, projection] = shot;
+    const glm::dmat4 clip_to_view = glm::inverse(projection);
     double worst = 0.0;
     size_t pixels = 0;
     for (int y = 0; y < kSide; ++y)  // GL rows, bottom up
@@ -365,29 +365,14 @@ TEST_P(Shading, TheFilesLightsShadeAsTheCpuEvaluatesThem) {
   // steps (0.3 is 76.5) is rounded by the GPU either way, which a tight highlight shows.
   for (const Case c : {Case{"rough dielectric", glm::vec3(204, 179, 153) / 255.0f, 0.0f, 179 / 255.0f},
                        Case{"glossy metal", glm::vec3(230, 153, 102) / 255.0f, 1.0f, 77 / 255.0f}}) {
-    scene::Scene built;
+    SCOPED_TRACE(c.what);
     scene::Material material;
     material.base_color = glm::vec4(c.base_color, 1.0f);
     material.metallic = c.metallic;
     material.roughness = c.roughness;
-    built.materials = {material};
-    scene::add_instance(built, scene::make_sphere({0, 0, 0}, 1.0f, 64, 0));
-    built.environment = black;
-    built.lights = lights;
-    scene::update_bounds(built);
-    render::FrameSettings settings;
-    settings.width = settings.height = kSide;
-    settings.check_errors = true;
-    settings.ao = false;
-    settings.key_light = 1.0f;
-    Harness h;
-    ASSERT_TRUE(h.start(GetParam(), std::move(built), settings)) << c.what;
-    EXPECT_EQ(h.renderer.gl_error(), "");
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const std::vector<float> depth = h.renderer.read_linear_depth();
-    const std::vector<glm::vec3> normals = h.renderer.read_view_normals();
-    const glm::dmat4 view_to_world = glm::inverse(h.camera.view());
-    const glm::dmat4 projection = h.camera.projection();
+    // The key light is asked for and must stay off: the scene brings lights of its own.
+    const Shot shot = sphere_under(GetParam(), material, {black, 1.0f, lights}, {}, 64);
+    const auto& [color, depth, normals, view_to_world, projection] = shot;
     double worst = 0.0;
     size_t pixels = 0, lit = 0, beyond_range = 0;
     for (int y = 0; y < kSide; ++y)  // GL rows, bottom up

@@ -103,6 +103,21 @@ void draw_one(const PassContext& context, const RasterProgram& program, const Sc
   gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
 }
 
+// Binds `program` with the view's projection unless it is the one bound.
+void use_program(const RasterProgram& program, const RasterProgram*& bound, const glm::mat4& projection) {
+  if (&program == bound) return;
+  gl::api.UseProgram(program.program->id());
+  gl::api.UniformMatrix4fv(program.projection, 1, GL_FALSE, glm::value_ptr(projection));
+  bound = &program;
+}
+
+// The state draw_one leaves, back to what the other passes expect.
+void end_draws() {
+  gl::api.BindVertexArray(0);
+  gl::api.ActiveTexture(GL_TEXTURE0);
+  gl::api.FrontFace(GL_CCW);
+}
+
 void draw_scene(const PassContext& context, bool depth_only) {
   const Programs& programs = context.programs;
   const SceneGpu& scene = context.scene;
@@ -127,17 +142,11 @@ void draw_scene(const PassContext& context, bool depth_only) {
         context.report_missing_program("g-buffer: a material's program was not prepared; its draws are skipped");
         continue;
       }
-      if (program != bound) {
-        gl::api.UseProgram(program->program->id());
-        gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
-        bound = program;
-      }
+      use_program(*program, bound, projection);
       draw_one(context, *program, draw, bits, depth_only);
     }
   }
-  gl::api.BindVertexArray(0);
-  gl::api.ActiveTexture(GL_TEXTURE0);
-  gl::api.FrontFace(GL_CCW);
+  end_draws();
 }
 
 // The blended materials over the presented image (forward.frag), farthest first by the centre of
@@ -146,10 +155,9 @@ void blend_pass(const PassContext& context, bool srgb) {
   const SceneGpu& scene = context.scene;
   const std::vector<SceneGpu::Draw>& draws = scene.blended_draws();
   std::vector<std::pair<double, int>>& order = scene.blend_order();
-  for (size_t i = 0; i < draws.size(); ++i) {
-    const double depth = -(context.view.view * glm::dvec4(draws[i].centre, 1.0)).z;
-    order[i] = {-depth, static_cast<int>(i)};
-  }
+  // By view-space z, most negative (farthest) first.
+  for (size_t i = 0; i < draws.size(); ++i)
+    order[i] = {(context.view.view * draws[i].world * glm::dvec4(draws[i].box_centre, 1.0)).z, static_cast<int>(i)};
   std::sort(order.begin(), order.end());
   const bool untextured_variant = context.targets.settings().untextured_variant;
   const glm::mat4 projection(context.view.projection);
@@ -170,18 +178,12 @@ void blend_pass(const PassContext& context, bool srgb) {
       context.report_missing_program("blend: a blended material's program was not prepared; its draws are skipped");
       continue;
     }
-    if (program != bound) {
-      gl::api.UseProgram(program->program->id());
-      gl::api.UniformMatrix4fv(program->projection, 1, GL_FALSE, glm::value_ptr(projection));
-      bound = program;
-    }
+    use_program(*program, bound, projection);
     draw_one(context, *program, draw, bits, false);
   }
   gl::api.Disable(GL_BLEND);
   gl::api.Disable(GL_CULL_FACE);
-  gl::api.BindVertexArray(0);
-  gl::api.ActiveTexture(GL_TEXTURE0);
-  gl::api.FrontFace(GL_CCW);
+  end_draws();
   context.finish_pass(Pass::blend);
 }
 

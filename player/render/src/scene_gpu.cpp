@@ -213,10 +213,9 @@ void SceneGpu::finish() {
   for (const scene::Instance& instance : scene.instances) {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     const glm::dvec3 box_centre = glm::dvec3(mesh.min + mesh.max) * 0.5;
-    const glm::dvec3 centre(instance.world * glm::dvec4(box_centre, 1.0));
     const bool blended = materials_[static_cast<size_t>(mesh.material)].alpha_mode == scene::AlphaMode::blend;
     (blended ? blended_ : draws_)
-        .push_back({instance.mesh, mesh.material, instance.world, centre, instance.node, instance.offset, box_centre});
+        .push_back({instance.mesh, mesh.material, instance.world, box_centre, instance.node, instance.offset});
   }
   rig_ = scene.rig;
   blend_order_.resize(blended_.size());
@@ -244,7 +243,6 @@ void SceneGpu::pose(const std::vector<glm::dmat4>& node_worlds) {
       const glm::dmat4 world = node_worlds[static_cast<size_t>(draw.node)] * draw.offset;
       if (world == draw.world) continue;
       draw.world = world;
-      draw.centre = glm::dvec3(draw.world * glm::dvec4(draw.box_centre, 1.0));
       moved = true;
     }
   if (moved) ++pose_version_;

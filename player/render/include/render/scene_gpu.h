@@ -34,10 +34,9 @@ class SceneGpu {
     int mesh;
     int material;
     glm::dmat4 world;
-    glm::dvec3 centre;  // of the mesh's box, in the world: blended draws are sorted by it
-    int node = -1;      // the rig's node that moves it (scene::Instance), -1: nothing does
+    glm::dvec3 box_centre;  // of the mesh's box, in the mesh: blended draws are sorted by it
+    int node = -1;          // the rig's node that moves it (scene::Instance), -1: nothing does
     glm::dmat4 offset{1.0};
-    glm::dvec3 box_centre{0.0};  // of the mesh's box, in the mesh
   };
 
   // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().

@@ -58,6 +58,19 @@ t_off=$(tail -1 "$out/hotplug.log" | sed -n 's/.* t=\([0-9.]*\) .*/\1/p')
 
 hotplug on
 wait_for "showing frames again.*" 30
+# The rest of the 60 frames, bounded: a player stuck after the return (a flip that never completes)
+# fails here with its output and log, not at ctest's timeout with nothing to read.
+for _ in $(seq 1 1200); do
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.1
+done
+if kill -0 "$pid" 2>/dev/null; then
+  kill -ABRT "$pid" 2>/dev/null || true
+  sleep 2
+  echo "last frames logged:"
+  tail -5 "$out/hotplug.log"
+  fail "the player did not finish its 60 frames within 120 s of the display's return"
+fi
 wait "$pid" || fail "the player exited with $?"
 cat "$out/hotplug.out"
 [ "$(grep -c '^display: showing frames again' "$out/hotplug.out")" -eq 2 ] || fail "expected two returns of the display"

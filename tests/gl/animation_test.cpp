@@ -53,7 +53,7 @@ TEST_P(Animated, APoseMovesItsNodesDrawsAndTheAoIsComputedAnew) {
   EXPECT_GT(redness(left_top), 60);
   EXPECT_LT(redness(right_top), 20);
   pose.at(scene::Rig::kAllAnimations, 1.5);  // three quarters of the way: x = 0.5
-  h.renderer.pose(pose.worlds());
+  h.renderer.pose(pose);
 
   h.renderer.render(h.camera);
   EXPECT_FALSE(h.renderer.reused_ao()) << "the scene moved: its AO is computed again";
@@ -62,8 +62,88 @@ TEST_P(Animated, APoseMovesItsNodesDrawsAndTheAoIsComputedAnew) {
   EXPECT_GT(redness(right_top), 60);
   // Posed again where it is: nothing moved, so nothing counts as motion.
   const std::uint64_t version = h.renderer.scene().pose_version();
-  h.renderer.pose(pose.worlds());
+  h.renderer.pose(pose);
   EXPECT_EQ(h.renderer.scene().pose_version(), version);
+}
+
+// A red box whose one morph target lifts its top by a unit, on a white floor: shaped on the GPU's
+// side by a pose (the vertices sent again), the frame is the one of the same box shaped on the CPU
+// and uploaded as it is.
+TEST_P(Animated, APoseReshapesAMorphedMeshAsTheCpuShapesIt) {
+  auto build = [](float weight) {
+    scene::Scene built;
+    scene::Material white, red;
+    red.base_color = glm::vec4(1, 0, 0, 1);
+    built.materials = {white, red};
+    scene::add_instance(built, scene::make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 0));
+    scene::Mesh box = scene::make_box({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}, 1);
+    box.morph.weights = {0.0f};
+    box.morph.positions.resize(1);
+    box.morph.normals.resize(1);
+    for (const scene::Vertex& v : box.vertices) {
+      box.morph.positions[0].push_back(glm::vec3(0, v.position.y > 0.5f ? 1.0f : 0.0f, 0));
+      box.morph.base_normals.push_back(v.normal);
+    }
+    box.max.y = 2.0f;  // the box of every shape
+    std::vector<scene::Vertex> shaped(box.vertices.size());
+    scene::morph_vertices(box, &weight, shaped);
+    box.vertices = shaped;
+    box.morph.weights = {weight};
+    scene::add_instance(built, std::move(box));
+    auto rig = std::make_shared<scene::Rig>();
+    rig->nodes.resize(1);
+    rig->nodes[0].weights = {weight};
+    scene::AnimationChannel grow;
+    grow.node = 0;
+    grow.property = scene::AnimatedProperty::weights;
+    grow.width = 1;
+    grow.times = {0.0f, 2.0f};
+    grow.weights = {0.0f, 1.0f};
+    rig->animations.push_back({"grow", {grow}, 2.0});
+    built.instances[1].node = 0;
+    built.rig = rig;
+    scene::update_bounds(built);
+    return built;
+  };
+  render::FrameSettings settings;
+  settings.width = settings.height = 96;
+  settings.check_errors = true;
+  scene::Framing framing;
+  framing.azimuth_deg = 0.0;
+  framing.elevation_deg = 30.0;
+  auto redness = [&](const Harness& h, glm::dvec3 world) {
+    const std::vector<uint8_t> color = h.renderer.read_color();
+    const glm::ivec2 p = h.pixel_of(world);
+    const size_t i = static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4);
+    return int(color[i]) - int(color[i + 1]);
+  };
+  const glm::dvec3 above_the_top(0, 1.5, 0);
+  std::vector<uint8_t> shaped_on_gpu;
+  {
+    Harness gpu;  // one context at a time: the two renderers' GL names would coincide
+    ASSERT_TRUE(gpu.start(GetParam(), build(0.0f), settings, framing));
+    gpu.renderer.render(gpu.camera);
+    EXPECT_LT(redness(gpu, above_the_top), 20);
+    scene::Pose pose(gpu.renderer.scene().rig());
+    pose.at(scene::Rig::kAllAnimations, 1.5);  // weight 0.75: the top at 1.75
+    const std::uint64_t version = gpu.renderer.scene().pose_version();
+    gpu.renderer.pose(pose);
+    EXPECT_GT(gpu.renderer.scene().pose_version(), version) << "a reshaped mesh is a moved scene: its AO is computed again";
+    // Enough frames that the AO history of the rest shape is gone from the average.
+    for (int frame = 0; frame < 24; ++frame) gpu.renderer.render(gpu.camera);
+    EXPECT_EQ(gpu.renderer.gl_error(), "");
+    EXPECT_GT(redness(gpu, above_the_top), 60);
+    shaped_on_gpu = gpu.renderer.read_color();
+  }
+  Harness cpu;
+  ASSERT_TRUE(cpu.start(GetParam(), build(0.75f), settings, framing));
+  for (int frame = 0; frame < 24; ++frame) cpu.renderer.render(cpu.camera);
+  const std::vector<uint8_t> shaped_on_cpu = cpu.renderer.read_color();
+  ASSERT_EQ(shaped_on_gpu.size(), shaped_on_cpu.size());
+  int worst = 0;
+  for (size_t i = 0; i < shaped_on_gpu.size(); ++i)
+    worst = std::max(worst, std::abs(int(shaped_on_gpu[i]) - int(shaped_on_cpu[i])));
+  EXPECT_LE(worst, 2) << "the GPU's shape differs from the CPU's";
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, Animated, ::testing::Values("egl", "osmesa"), test::platform_name);

@@ -142,10 +142,37 @@ class GltfAnimation : public GltfLoader {
     doc["accessors"].push_back({{"bufferView", 3},
                                 {"componentType", 5126},
                                 {"count", outputs.size() / static_cast<size_t>(components)},
-                                {"type", components == 4 ? "VEC4" : "VEC3"}});
+                                {"type", components == 4   ? "VEC4"
+                                         : components == 1 ? "SCALAR"
+                                                           : "VEC3"}});
     doc["animations"] = {{{"name", "slide"},
                           {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", path}}}}}},
                           {"samplers", {{{"input", 2}, {"output", 3}, {"interpolation", interpolation}}}}}};
+    return doc;
+  }
+
+  // triangle() with one morph target that lifts its top corner (0, 1, 0) by one unit and turns
+  // its normals towards +x, shown by node 1 at `rest` weights; its weights animated as `times` and
+  // `outputs` give (no animation when `times` is empty).
+  json morphing(std::vector<float> rest, std::vector<float> times, std::vector<float> outputs,
+                const std::string& interpolation = "LINEAR") {
+    json doc = times.empty() ? triangle() : animated("weights", interpolation, times, outputs, 1);
+    if (times.empty()) doc["nodes"] = {{{"children", {1}}}, {{"mesh", 0}, {"translation", {1, 0, 0}}}};
+    std::vector<unsigned char> bytes;
+    append<float>(bytes, {0, 0, 0, 0, 0, 0, 0, 1, 0});     // the target's POSITION
+    append<float>(bytes, {0, 0, 1, 0, 0, 1, 0, 0, 1});     // the base NORMAL
+    append<float>(bytes, {1, 0, -1, 1, 0, -1, 1, 0, -1});  // the target's NORMAL
+    const size_t buffer = doc["buffers"].size(), view = doc["bufferViews"].size(), accessor = doc["accessors"].size();
+    doc["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}});
+    for (size_t k = 0; k < 3; ++k) {
+      doc["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", k * 36}, {"byteLength", 36}});
+      doc["accessors"].push_back({{"bufferView", view + k}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+    }
+    json& primitive = doc["meshes"][0]["primitives"][0];
+    primitive["attributes"]["NORMAL"] = accessor + 1;
+    primitive["targets"] = {{{"POSITION", accessor}, {"NORMAL", accessor + 2}}};
+    doc["meshes"][0]["weights"] = rest;
+    if (!times.empty()) doc["animations"][0]["channels"][0]["target"]["node"] = 1;
     return doc;
   }
 };
@@ -197,11 +224,94 @@ TEST_F(GltfAnimation, BadSamplersAreRefusedByFieldAndWeightsWarned) {
   refused(matrix, "animations[0].channels[0].target.node: node 0 has a matrix");
   json weights = animated("translation", "LINEAR", {0, 2}, {0, 0, 0, 0, 4, 0}, 3);
   weights["animations"][0]["channels"][0]["target"]["path"] = "weights";
-  scene::Scene out;
-  scene::LoadReport report;
-  ASSERT_TRUE(scene::load_gltf(write(weights), out, report)) << report.error;
-  ASSERT_EQ(report.warnings.size(), 1u);
-  EXPECT_NE(report.warnings[0].find("morph target weights are not animated"), std::string::npos);
+  refused(weights, "animations[0].channels[0].target.node: node 0 shows no mesh with morph targets");
+  refused(morphing({0}, {0, 2}, {0, 1, 1}), "animations[0].samplers[0].output: 3 values for 2 keys of 1 weights; expected 2");
+  refused(morphing({0, 1}, {0, 2}, {0, 1}), "meshes[0].weights: 2 weights; expected one per morph target (1)");
+  json node_weights = morphing({0}, {}, {});
+  node_weights["nodes"][1]["weights"] = {0.5, 0.5};
+  refused(node_weights, "nodes[1].weights: 2 weights; expected one per morph target (1)");
+  json short_target = morphing({0}, {0, 2}, {0, 1});
+  short_target["accessors"][4]["count"] = 2;
+  refused(short_target, "meshes[0].primitives[0].targets[0].POSITION: count 2 differs from POSITION's 3");
+}
+
+TEST(AnimationSampler, WeightsInterpolateEachAsAScalar) {
+  scene::AnimationChannel weights;
+  weights.property = scene::AnimatedProperty::weights;
+  weights.width = 2;
+  weights.times = {0, 1, 2};
+  weights.weights = {0, 1, 0.5f, 0, 1, 0.5f};  // per key: two weights
+  float out[2];
+  weights.interpolation = scene::Interpolation::linear;
+  scene::sample_weights(weights, 0.5, out);
+  EXPECT_FLOAT_EQ(out[0], 0.25f);
+  EXPECT_FLOAT_EQ(out[1], 0.5f);
+  scene::sample_weights(weights, 7.0, out);  // after the last key: the last
+  EXPECT_FLOAT_EQ(out[0], 1.0f);
+  weights.interpolation = scene::Interpolation::step;
+  scene::sample_weights(weights, 1.9, out);
+  EXPECT_FLOAT_EQ(out[0], 0.5f);
+  EXPECT_FLOAT_EQ(out[1], 0.0f);
+  // A cubic spline reproduces w(t) = t^3 (first weight) and 2 - t (second) from values and
+  // derivatives, as sample() does for a translation.
+  weights.interpolation = scene::Interpolation::cubic_spline;
+  weights.weights.clear();
+  for (float t : {0.0f, 1.0f, 2.0f})
+    for (int part = 0; part < 3; ++part) {
+      if (part == 1)
+        weights.weights.insert(weights.weights.end(), {t * t * t, 2 - t});
+      else
+        weights.weights.insert(weights.weights.end(), {3 * t * t, -1.0f});
+    }
+  for (double t : {0.3, 1.0, 1.6}) {
+    scene::sample_weights(weights, t, out);
+    EXPECT_NEAR(out[0], t * t * t, 1e-5) << t;
+    EXPECT_NEAR(out[1], 2 - t, 1e-6) << t;
+  }
+}
+
+TEST_F(GltfAnimation, MorphTargetsShapeTheMeshAtTheNodesWeightsAndTheAnimationReshapesIt) {
+  // Without an animation the mesh is loaded in the shape its weights give and keeps no targets.
+  const scene::Scene still = load_ok(write(morphing({0.5}, {}, {})));
+  ASSERT_EQ(still.meshes.size(), 1u);
+  const auto& v = still.meshes[0].vertices;
+  EXPECT_NEAR(v[2].position.y - v[0].position.y, 1.5, 1e-6);
+  EXPECT_NEAR(glm::distance(v[0].normal, glm::normalize(glm::vec3(0.5f, 0, 0.5f))), 0.0, 1e-6);
+  EXPECT_EQ(still.meshes[0].morph.target_count(), 0u);
+  EXPECT_FALSE(still.rig);
+
+  // Animated from 0 to 1 over two seconds, resting at 0.25.
+  scene::Scene loaded = load_ok(write(morphing({0.25}, {0, 2}, {0, 1})));
+  ASSERT_TRUE(loaded.rig);
+  ASSERT_EQ(loaded.meshes.size(), 1u);
+  const scene::Mesh& mesh = loaded.meshes[0];
+  ASSERT_EQ(mesh.morph.target_count(), 1u);
+  EXPECT_EQ(loaded.rig->nodes[1].weights, std::vector<float>{0.25f});
+  EXPECT_NEAR(mesh.vertices[2].position.y - mesh.vertices[0].position.y, 1.25, 1e-6);
+  // The box holds every shape the keys make: the top corner from y = 1 to 2 above the base.
+  EXPECT_NEAR(mesh.max.y - mesh.min.y, 2.0, 1e-6);
+  const glm::vec3 base = mesh.vertices[0].position;
+  scene::Pose pose(loaded.rig);
+  for (double t : {0.0, 0.5, 1.0, 2.0 - 1e-9}) {
+    pose.at(scene::Rig::kAllAnimations, t);
+    ASSERT_EQ(pose.weights()[1].size(), 1u);
+    const float w = static_cast<float>(t / 2);
+    EXPECT_NEAR(pose.weights()[1][0], w, 1e-6) << t;
+    // The CPU shape against the closed form: the top corner lifted by w, the normals turned.
+    std::vector<scene::Vertex> shaped(mesh.vertices.size());
+    scene::morph_vertices(mesh, pose.weights()[1].data(), shaped);
+    EXPECT_NEAR(glm::distance(shaped[2].position, base + glm::vec3(0, 1 + w, 0)), 0.0, 1e-6) << t;
+    EXPECT_NEAR(glm::distance(shaped[1].position, base + glm::vec3(1, 0, 0)), 0.0, 1e-6) << t;
+    EXPECT_NEAR(glm::distance(shaped[0].normal, glm::normalize(glm::vec3(w, 0, 1 - w))), 0.0, 1e-6) << t;
+  }
+  // The render command's pose: the meshes take the shape, the rest pose gives theirs back.
+  pose.at(scene::Rig::kAllAnimations, 1.0);
+  scene::pose_meshes(loaded, pose);
+  EXPECT_NEAR(loaded.meshes[0].vertices[2].position.y - base.y, 1.5, 1e-6);
+  EXPECT_EQ(loaded.meshes[0].morph.weights, std::vector<float>{0.5f});
+  pose.at(scene::Rig::kNoAnimation, 1.0);
+  scene::pose_meshes(loaded, pose);
+  EXPECT_NEAR(loaded.meshes[0].vertices[2].position.y - base.y, 1.25, 1e-6);
 }
 
 }  // namespace

@@ -379,8 +379,6 @@ const std::string kSafe = "9007199254740991";  // 2^53 - 1, the largest integer 
 
 // Why each verdict is what it is, where it is not plain "glTF says it is an error, and it concerns
 // data the player reads":
-// - morph-target-counts-differ: the player draws no morph targets (it reads no "targets"), so
-//   their accessors are checked only for their index; the validator's error concerns unread data.
 // - points-only, no-scenes, empty-scene: valid glTF, but nothing to show; a kiosk refuses with a
 //   line saying so rather than playing a black screen (lines and points next to triangles load,
 //   with a warning).
@@ -477,7 +475,7 @@ const std::map<std::string, Verdict> kVerdicts = {
     {"sparse-indices-out-of-range.gltf",
      {"meshes[0].primitives[0].attributes.POSITION (accessors[0]).sparse.indices: element 0 is 7; expected strictly "
       "increasing indices below the accessor's count 3"}},
-    {"morph-target-counts-differ.gltf", {}},
+    {"morph-target-counts-differ.gltf", {"meshes[0].primitives[0].targets[0].POSITION: count 2 differs from POSITION's 3"}},
     {"mode-out-of-range.gltf", {"meshes[0].primitives[0].mode: 7 is out of range; expected an integer from 0 to 6"}},
     {"scene-out-of-range.gltf", {"scene: 5 is out of range; expected an index into scenes (there are 1)"}},
     {"scene-node-out-of-range.gltf", {"scenes[0].nodes[0]: 3 is out of range; expected an index into nodes (there are 1)"}},

@@ -191,6 +191,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     scene::Pose pose(scene.rig);
     pose.at(selection, options.time);
     scene::pose_instances(scene, pose);
+    scene::pose_meshes(scene, pose);
   }
   render::Renderer renderer;
   const render::PresentTarget target{platform.framebuffer(), 0, 0, platform.srgb_framebuffer()};

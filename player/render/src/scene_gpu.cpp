@@ -46,7 +46,9 @@ SceneGpu::Mesh allocate_mesh(const scene::Mesh& mesh) {
   if (bytes.uv1) gpu.uv1 = stream(4, 2, bytes.uv1);
   gpu.vertices = gl::make_buffer();
   gl::api.BindBuffer(GL_ARRAY_BUFFER, gpu.vertices.id());
-  gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.vertices), nullptr, GL_STATIC_DRAW);
+  // A morphed mesh's vertices are sent again whenever its weights change.
+  gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.vertices), nullptr,
+                     mesh.morph.target_count() ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
   gpu.indices = gl::make_buffer();
   gl::api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.id());
   gl::api.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.indices), nullptr, GL_STATIC_DRAW);
@@ -218,6 +220,15 @@ void SceneGpu::finish() {
         .push_back({instance.mesh, mesh.material, instance.world, box_centre, instance.node, instance.offset});
   }
   rig_ = scene.rig;
+  for (const scene::Instance& instance : scene.instances) {
+    const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
+    if (instance.node < 0 || mesh.morph.target_count() == 0) continue;
+    Morphed morphed{instance.mesh, instance.node, scene::Mesh(), mesh.morph.weights};
+    morphed.source.vertices = mesh.vertices;
+    morphed.source.morph = mesh.morph;
+    shaped_.resize(std::max(shaped_.size(), mesh.vertices.size()));
+    morphed_.push_back(std::move(morphed));
+  }
   blend_order_.resize(blended_.size());
   // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).
   auto group = [&](const Draw& draw) {
@@ -235,8 +246,19 @@ void SceneGpu::finish() {
   source_.reset();
 }
 
-void SceneGpu::pose(const std::vector<glm::dmat4>& node_worlds) {
+void SceneGpu::pose(const scene::Pose& pose) {
+  const std::vector<glm::dmat4>& node_worlds = pose.worlds();
   bool moved = false;
+  for (Morphed& morphed : morphed_) {
+    const std::vector<float>& weights = pose.weights()[static_cast<size_t>(morphed.node)];
+    if (weights.size() != morphed.shown.size() || weights == morphed.shown) continue;
+    scene::morph_vertices(morphed.source, weights.data(), shaped_);
+    std::copy(weights.begin(), weights.end(), morphed.shown.begin());
+    upload_range(meshes_[static_cast<size_t>(morphed.mesh)].vertices, shaped_.data(), 0,
+                 morphed.source.vertices.size() * sizeof(scene::Vertex));
+    moved = true;
+  }
+  if (!morphed_.empty()) gl::api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
   for (std::vector<Draw>* draws : {&draws_, &blended_})
     for (Draw& draw : *draws) {
       if (draw.node < 0 || static_cast<size_t>(draw.node) >= node_worlds.size()) continue;

@@ -29,6 +29,12 @@ glm::dvec4 slerp_shorter(glm::dvec4 a, glm::dvec4 b, double u) {
 
 }  // namespace
 
+glm::dmat4 trs_matrix(const glm::dvec3& translation, const glm::dquat& rotation, const glm::dvec3& scale) {
+  glm::dmat4 transform = glm::translate(glm::dmat4(1.0), translation);
+  transform *= glm::mat4_cast(rotation);
+  return glm::scale(transform, scale);
+}
+
 double Rig::duration(int selection) const {
   double longest = 0.0;
   for (size_t i = 0; i < animations.size(); ++i)
@@ -71,6 +77,20 @@ bool select_animation(const Rig* rig, const std::string& spec, int& selection, s
 void pose_instances(Scene& scene, const Pose& pose) {
   for (Instance& instance : scene.instances)
     if (instance.node >= 0) instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
+}
+
+void pose_meshes(Scene& scene, const Pose& pose) {
+  std::vector<Vertex> shaped;
+  for (const Instance& instance : scene.instances) {
+    Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
+    if (instance.node < 0 || mesh.morph.target_count() == 0) continue;
+    const std::vector<float>& weights = pose.weights()[static_cast<size_t>(instance.node)];
+    if (weights.size() != mesh.morph.target_count()) continue;
+    shaped.resize(mesh.vertices.size());
+    morph_vertices(mesh, weights.data(), shaped);
+    mesh.vertices.swap(shaped);
+    mesh.morph.weights = weights;
+  }
 }
 
 void include_animation_in_bounds(Scene& scene) {
@@ -124,20 +144,59 @@ glm::dvec4 sample(const AnimationChannel& channel, double seconds) {
   return value(key);
 }
 
+void sample_weights(const AnimationChannel& channel, double seconds, float* out) {
+  const std::vector<float>& times = channel.times;
+  const size_t width = channel.width;
+  const bool cubic = channel.interpolation == Interpolation::cubic_spline;
+  // Weight w of key k (part 0: in-tangent, 1: value, 2: out-tangent of a cubic spline).
+  auto at = [&](size_t key, size_t part, size_t w) {
+    return double(channel.weights[((cubic ? key * 3 + part : key) * width) + w]);
+  };
+  if (times.empty()) return;
+  size_t key = 0, next = 0;
+  double u = 0.0, span = 0.0;
+  if (seconds >= times.back()) {
+    key = next = times.size() - 1;
+  } else if (seconds > times.front()) {
+    next = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), seconds) - times.begin());
+    key = next - 1;
+    span = double(times[next]) - double(times[key]);
+    u = (seconds - times[key]) / span;
+  }
+  for (size_t w = 0; w < width; ++w) {
+    double value = at(key, 1, w);
+    if (key != next && channel.interpolation == Interpolation::linear) {
+      value = value + (at(next, 1, w) - value) * u;
+    } else if (key != next && cubic) {
+      const double u2 = u * u, u3 = u2 * u;
+      value = (2 * u3 - 3 * u2 + 1) * value + (u3 - 2 * u2 + u) * span * at(key, 2, w) + (-2 * u3 + 3 * u2) * at(next, 1, w) +
+              (u3 - u2) * span * at(next, 0, w);
+    }
+    out[w] = static_cast<float>(value);
+  }
+}
+
 Pose::Pose(std::shared_ptr<const Rig> rig)
     : rig_(std::move(rig)), locals_(rig_->nodes.size()), worlds_(rig_->nodes.size(), glm::dmat4(1.0)) {
+  for (const Rig::Node& node : rig_->nodes) weights_.push_back(node.weights);
   at(Rig::kAllAnimations, 0.0);
 }
 
 void Pose::at(int selection, double seconds) {
   const Rig& rig = *rig_;
-  for (size_t i = 0; i < rig.nodes.size(); ++i)
+  for (size_t i = 0; i < rig.nodes.size(); ++i) {
     locals_[i] = {rig.nodes[i].translation, rig.nodes[i].rotation, rig.nodes[i].scale};
+    std::copy(rig.nodes[i].weights.begin(), rig.nodes[i].weights.end(), weights_[i].begin());
+  }
   const double duration = rig.duration(selection);
   const double t = duration > 0.0 && std::isfinite(seconds) ? seconds - duration * std::floor(seconds / duration) : 0.0;
   for (size_t a = 0; a < rig.animations.size(); ++a) {
     if (selection != Rig::kAllAnimations && static_cast<size_t>(selection) != a) continue;
     for (const AnimationChannel& channel : rig.animations[a].channels) {
+      if (channel.property == AnimatedProperty::weights) {
+        sample_weights(channel, t, weights_[static_cast<size_t>(channel.node)].data());
+        continue;
+      }
       const glm::dvec4 v = sample(channel, t);
       Local& local = locals_[static_cast<size_t>(channel.node)];
       switch (channel.property) {
@@ -150,15 +209,15 @@ void Pose::at(int selection, double seconds) {
         case AnimatedProperty::scale:
           local.scale = glm::dvec3(v);
           break;
+        case AnimatedProperty::weights:
+          break;
       }
     }
   }
   for (size_t i = 0; i < rig.nodes.size(); ++i) {
     const Rig::Node& node = rig.nodes[i];
     const Local& local = locals_[i];
-    const glm::dmat4 transform = node.uses_matrix ? node.matrix
-                                                  : glm::translate(glm::dmat4(1.0), local.translation) *
-                                                        glm::mat4_cast(local.rotation) * glm::scale(glm::dmat4(1.0), local.scale);
+    const glm::dmat4 transform = node.uses_matrix ? node.matrix : trs_matrix(local.translation, local.rotation, local.scale);
     worlds_[i] = node.parent < 0 ? transform : worlds_[static_cast<size_t>(node.parent)] * transform;
   }
 }

@@ -13,11 +13,9 @@ constexpr int kFloat = 5126, kByte = 5120, kUnsignedByte = 5121, kShort = 5122, 
 
 }  // namespace
 
-std::vector<Animation> read_animations(Document& document, const std::vector<int>& node_of, const Rig& rig,
-                                       std::vector<std::string>& warnings) {
+std::vector<Animation> read_animations(Document& document, const std::vector<int>& node_of, const Rig& rig) {
   const tinygltf::Model& model = document.model();
   std::vector<Animation> animations;
-  bool warned_weights = false;
   for (size_t a = 0; a < model.animations.size(); ++a) {
     const tinygltf::Animation& source = model.animations[a];
     const std::string where = "animations[" + std::to_string(a) + "]";
@@ -33,12 +31,6 @@ std::vector<Animation> read_animations(Document& document, const std::vector<int
       if (static_cast<size_t>(channel.target_node) >= model.nodes.size())
         fail(field + ".target.node: " + std::to_string(channel.target_node) + " out of range (there are " +
              std::to_string(model.nodes.size()) + ")");
-      if (channel.target_path == "weights") {
-        if (!warned_weights)
-          warnings.push_back(field + ".target.path: morph target weights are not animated; the meshes keep their rest shape");
-        warned_weights = true;
-        continue;
-      }
       AnimationChannel out;
       if (channel.target_path == "translation")
         out.property = AnimatedProperty::translation;
@@ -46,14 +38,22 @@ std::vector<Animation> read_animations(Document& document, const std::vector<int
         out.property = AnimatedProperty::rotation;
       else if (channel.target_path == "scale")
         out.property = AnimatedProperty::scale;
+      else if (channel.target_path == "weights")
+        out.property = AnimatedProperty::weights;
       else
         fail(field + ".target.path: \"" + channel.target_path + "\"; expected translation, rotation, scale or weights");
       const int node = node_of[static_cast<size_t>(channel.target_node)];
       if (node < 0) continue;  // a node of another scene than the one shown
-      if (rig.nodes[static_cast<size_t>(node)].uses_matrix)
+      if (out.property != AnimatedProperty::weights && rig.nodes[static_cast<size_t>(node)].uses_matrix)
         fail(field + ".target.node: node " + std::to_string(channel.target_node) +
              " has a matrix; glTF animates only nodes given by translation, rotation and scale");
       out.node = node;
+      if (out.property == AnimatedProperty::weights) {
+        out.width = rig.nodes[static_cast<size_t>(node)].weights.size();
+        if (out.width == 0)
+          fail(field + ".target.node: node " + std::to_string(channel.target_node) +
+               " shows no mesh with morph targets; expected one for a weights channel");
+      }
       const tinygltf::AnimationSampler& sampler = source.samplers[static_cast<size_t>(channel.sampler)];
       const std::string sampler_field = where + ".samplers[" + std::to_string(channel.sampler) + "]";
       if (sampler.interpolation == "STEP")
@@ -74,7 +74,15 @@ std::vector<Animation> read_animations(Document& document, const std::vector<int
       }
       const size_t per_key = out.interpolation == Interpolation::cubic_spline ? 3 : 1;
       const std::string output_field = sampler_field + ".output";
-      if (out.property == AnimatedProperty::rotation) {
+      if (out.property == AnimatedProperty::weights) {
+        const std::vector<Format> formats = {
+            {kFloat, false}, {kByte, true}, {kUnsignedByte, true}, {kShort, true}, {kUnsignedShort, true}};
+        for (const glm::vec1& w : read_floats<1>(document, sampler.output, output_field, formats)) out.weights.push_back(w.x);
+        if (out.weights.size() != out.times.size() * per_key * out.width)
+          fail(output_field + ": " + std::to_string(out.weights.size()) + " values for " + std::to_string(out.times.size()) +
+               " keys of " + std::to_string(out.width) + " weights; expected " +
+               std::to_string(out.times.size() * per_key * out.width));
+      } else if (out.property == AnimatedProperty::rotation) {
         // glTF allows normalised integers for rotations (KHR_mesh_quantization's pipelines write them).
         const std::vector<Format> formats = {
             {kFloat, false}, {kByte, true}, {kUnsignedByte, true}, {kShort, true}, {kUnsignedShort, true}};
@@ -83,7 +91,7 @@ std::vector<Animation> read_animations(Document& document, const std::vector<int
         for (const glm::vec3& v : read_floats<3>(document, sampler.output, output_field, {{kFloat, false}}))
           out.values.emplace_back(v, 0.0f);
       }
-      if (out.values.size() != out.times.size() * per_key)
+      if (out.property != AnimatedProperty::weights && out.values.size() != out.times.size() * per_key)
         fail(output_field + ": " + std::to_string(out.values.size()) + " values for " + std::to_string(out.times.size()) +
              " keys; expected " + std::to_string(out.times.size() * per_key));
       if (out.property == AnimatedProperty::rotation)

@@ -6,6 +6,7 @@
 #include "gltf_draco.h"
 #include "gltf_lights.h"
 #include "gltf_materials.h"
+#include "gltf_morph.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -92,7 +93,8 @@ class Builder {
     }
     visit(shown->nodes, "scenes[" + std::to_string(shown_index) + "].nodes");
     if (rig_) {
-      rig_->animations = read_animations(document_, node_of_, *rig_, report_.warnings);
+      rig_->animations = read_animations(document_, node_of_, *rig_);
+      settle_morphs(scene_, *rig_);
       scene_.rig = std::move(rig_);
     }
     if (scene_.instances.empty()) fail("meshes: the scene contains no triangles to render");
@@ -103,7 +105,8 @@ class Builder {
   }
 
  private:
-  static glm::dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
+  // The node's own transform as the file gives it, checked finite.
+  static Rig::Node rest_node(const tinygltf::Node& node, const std::string& where) {
     auto check = [&](const std::vector<double>& values, const char* field) {
       for (double value : values)
         if (!std::isfinite(value)) fail(where + "." + field + ": expected finite numbers");
@@ -112,15 +115,16 @@ class Builder {
     check(node.translation, "translation");
     check(node.rotation, "rotation");
     check(node.scale, "scale");
-    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
-    glm::dmat4 transform(1.0);
-    if (node.translation.size() == 3) transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
-    if (node.rotation.size() == 4) {
-      const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-      transform *= glm::mat4_cast(glm::normalize(rotation));
+    Rig::Node out;
+    if (node.matrix.size() == 16) {
+      out.uses_matrix = true;
+      out.matrix = glm::make_mat4(node.matrix.data());
     }
-    if (node.scale.size() == 3) transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
-    return transform;
+    if (node.translation.size() == 3) out.translation = glm::make_vec3(node.translation.data());
+    if (node.rotation.size() == 4)
+      out.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+    if (node.scale.size() == 3) out.scale = glm::make_vec3(node.scale.data());
+    return out;
   }
 
   // Depth-first over the node tree with an explicit stack: a valid file may chain 100,000 nodes,
@@ -146,17 +150,23 @@ class Builder {
       seen[at] = on_path[at] = 1;
       const std::string where = "nodes[" + std::to_string(index) + "]";
       const tinygltf::Node& node = model_.nodes[at];
-      const glm::dmat4 world = parent * local_transform(node, where);
-      const int rig_node = rig_ ? add_rig_node(node, rig_parent) : -1;
+      Rig::Node local = rest_node(node, where);
+      if (node.mesh >= 0 && static_cast<size_t>(node.mesh) >= model_.meshes.size())
+        fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " + std::to_string(model_.meshes.size()) +
+             ")");
+      const size_t targets = node.mesh >= 0 ? target_count(model_.meshes[static_cast<size_t>(node.mesh)],
+                                                           "meshes[" + std::to_string(node.mesh) + "]")
+                                            : 0;
+      std::vector<float> weights;
+      if (targets > 0) weights = default_weights(model_, index, targets);
+      if (rig_) local.weights = weights;
+      const glm::dmat4 world = parent * local.local();
+      const int rig_node = rig_ ? add_rig_node(std::move(local), rig_parent) : -1;
       if (rig_) node_of_[at] = rig_node;
       if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
       if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) add_light(*light);
-      if (node.mesh >= 0) {
-        if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
-          fail(where + ".mesh: " + std::to_string(node.mesh) + " out of range (there are " +
-               std::to_string(model_.meshes.size()) + ")");
-        for (int mesh : meshes_of(node.mesh)) scene_.instances.push_back({mesh, world, rig_node, glm::dmat4(1.0)});
-      }
+      if (node.mesh >= 0)
+        for (int mesh : meshes_of(node.mesh, weights)) scene_.instances.push_back({mesh, world, rig_node, glm::dmat4(1.0)});
       stack.push_back({index, world, 0, rig_node});
     };
     for (size_t r = 0; r < roots.size(); ++r) {
@@ -177,18 +187,9 @@ class Builder {
     }
   }
 
-  int add_rig_node(const tinygltf::Node& node, int parent) {
-    Rig::Node out;
-    out.parent = parent;
-    if (node.matrix.size() == 16) {
-      out.uses_matrix = true;
-      out.matrix = glm::make_mat4(node.matrix.data());
-    }
-    if (node.translation.size() == 3) out.translation = glm::make_vec3(node.translation.data());
-    if (node.rotation.size() == 4)
-      out.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-    if (node.scale.size() == 3) out.scale = glm::make_vec3(node.scale.data());
-    rig_->nodes.push_back(out);
+  int add_rig_node(Rig::Node node, int parent) {
+    node.parent = parent;
+    rig_->nodes.push_back(std::move(node));
     return static_cast<int>(rig_->nodes.size()) - 1;
   }
 
@@ -249,10 +250,12 @@ class Builder {
     return camera;
   }
 
-  // The Scene meshes of glTF mesh `index`, one per triangle primitive, converted once and shared by instances.
-  const std::vector<int>& meshes_of(int index) {
-    auto found = converted_.find(index);
-    if (found != converted_.end()) return found->second;
+  // The Scene meshes of glTF mesh `index`, one per triangle primitive, converted once and shared by
+  // instances; a mesh with morph targets, shaped at `weights`, is converted for each node that shows
+  // it, as the nodes may give it different weights.
+  std::vector<int> meshes_of(int index, const std::vector<float>& weights) {
+    if (weights.empty())
+      if (auto found = converted_.find(index); found != converted_.end()) return found->second;
     std::vector<int> ids;
     const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(index)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -264,12 +267,13 @@ class Builder {
         continue;
       }
       const nlohmann::json& source = document_.root()["meshes"][static_cast<size_t>(index)]["primitives"][p];
-      Mesh converted = convert(primitive, source, where);
+      Mesh converted = convert(primitive, source, where, weights);
       if (converted.indices.empty()) continue;
       scene_.meshes.push_back(std::move(converted));
       ids.push_back(static_cast<int>(scene_.meshes.size()) - 1);
     }
-    return converted_[index] = ids;
+    if (weights.empty()) converted_[index] = ids;
+    return ids;
   }
 
   // Attribute `name` of a primitive, from its Draco mesh when the extension compresses it, else
@@ -321,7 +325,36 @@ class Builder {
     return uvs;
   }
 
-  Mesh convert(const tinygltf::Primitive& primitive, const nlohmann::json& source, const std::string& where) {
+  // The primitive's morph targets, with `positions` and `normals` moved to the shape `weights`
+  // give; empty where it has none or they cannot be read (a Draco primitive's: its points are
+  // reordered).
+  Mesh::Morph shape(const tinygltf::Primitive& primitive, const DracoPrimitive* decoded, const std::vector<float>& weights,
+                    std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals, const std::string& where) {
+    if (primitive.targets.empty() || weights.size() != primitive.targets.size()) return {};
+    if (decoded) {
+      report_.warnings.push_back(where +
+                                 ".targets: morph targets of a Draco-compressed primitive are not read; it is shown in "
+                                 "its base shape");
+      return {};
+    }
+    Mesh::Morph morph = read_morph_targets(document_, primitive, positions.size(), where, quantized_);
+    morph.weights = weights;
+    morph.base_normals = normals;
+    for (size_t t = 0; t < weights.size(); ++t) {
+      if (weights[t] == 0.0f) continue;
+      if (!morph.positions[t].empty())
+        for (size_t i = 0; i < positions.size(); ++i) positions[i] += weights[t] * morph.positions[t][i];
+      if (!morph.normals[t].empty() && !normals.empty())
+        for (size_t i = 0; i < normals.size(); ++i) normals[i] += weights[t] * morph.normals[t][i];
+    }
+    for (const glm::vec3& p : positions)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        fail(where + ".targets: the weighted displacements take a position beyond the float range");
+    return morph;
+  }
+
+  Mesh convert(const tinygltf::Primitive& primitive, const nlohmann::json& source, const std::string& where,
+               const std::vector<float>& weights) {
     std::optional<DracoPrimitive> draco;
     if (const auto extensions = source.find("extensions"); extensions != source.end() && extensions->is_object())
       if (const auto compressed = extensions->find("KHR_draco_mesh_compression"); compressed != extensions->end()) {
@@ -333,7 +366,7 @@ class Builder {
     const DracoPrimitive* decoded = draco ? &*draco : nullptr;
     const auto position_at = primitive.attributes.find("POSITION");
     if (position_at == primitive.attributes.end()) fail(where + ".attributes: POSITION is required");
-    const auto positions =
+    auto positions =
         attribute<3>(decoded, "POSITION", position_at->second, where + ".attributes.POSITION", position_formats(quantized_));
     const size_t vertex_count = positions.size();
     // decode_draco checks its indices against its own points, so the vertices must be those points
@@ -355,6 +388,9 @@ class Builder {
       normals = attribute<3>(decoded, "NORMAL", at->second, where + ".attributes.NORMAL", normal_formats(quantized_));
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
+    Mesh::Morph morph = shape(primitive, decoded, weights, positions, normals, where);
+    // Only an animated file can change the weights (settle_morphs drops what no channel moves).
+    if (!rig_) morph = Mesh::Morph();
     const int material_id = materials_.material(primitive.material, where);
     const MaterialMappings& mappings = materials_.mappings(material_id);
     const scene::Material& shown = scene_.materials[static_cast<size_t>(material_id)];
@@ -396,6 +432,14 @@ class Builder {
     if (normals.empty()) {
       // The spec: without NORMAL, flat normals. Each triangle gets its own three vertices.
       mesh.vertices.reserve(indices.size());
+      Mesh::Morph per_corner = morph;
+      for (size_t t = 0; t < morph.target_count(); ++t) {
+        per_corner.positions[t].clear();
+        per_corner.normals[t].clear();
+        if (!morph.positions[t].empty())
+          for (uint32_t from : indices) per_corner.positions[t].push_back(morph.positions[t][from]);
+      }
+      mesh.morph = std::move(per_corner);
       for (size_t t = 0; t + 2 < indices.size(); t += 3) {
         const glm::vec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
         const glm::dvec3 cross = glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
@@ -418,6 +462,7 @@ class Builder {
       }
       mesh.indices = std::move(indices);
       mesh.uv1 = std::move(second_uvs);
+      mesh.morph = std::move(morph);
       // The file's tangents, normalised; w must be the sign of a handedness (glTF: +1 or -1).
       for (size_t i = 0; i < tangents.size(); ++i) {
         glm::vec4& t = tangents[i];

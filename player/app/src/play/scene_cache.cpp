@@ -130,7 +130,7 @@ void SceneCache::pose(int item, double item_time) {
   }
   if (!scene.pose) return;
   scene.pose->at(selection, item_time * animation_speeds_[i]);
-  scene.gpu->pose(scene.pose->worlds());
+  scene.gpu->pose(*scene.pose);
 }
 
 void SceneCache::reload_all() {

@@ -79,7 +79,7 @@ class Renderer {
   const Programs& programs() const { return programs_; }
   const SceneGpu& scene() const { return scene_; }
   // The uploaded scene's draws placed at a pose of its rig (SceneGpu::pose).
-  void pose(const std::vector<glm::dmat4>& node_worlds) { scene_.pose(node_worlds); }
+  void pose(const scene::Pose& pose) { scene_.pose(pose); }
   ViewTargets& targets() { return output_.targets(); }
   const ViewTargets& targets() const { return output_.targets(); }
 

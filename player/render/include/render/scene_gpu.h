@@ -3,6 +3,7 @@
 // either at once or in slices of a byte budget across frames, so a new item never stalls a frame.
 #include "gl/caps.h"
 #include "gl/objects.h"
+#include "scene/animation.h"
 #include "scene/scene.h"
 
 #include <array>
@@ -58,9 +59,11 @@ class SceneGpu {
   // depth rejection and are drawn over the depth the others have laid.
   const std::vector<Draw>& draws() const { return draws_; }
   // An animated scene's node tree and animations (null: nothing moves), and the draws placed at
-  // the node transforms of a pose (scene::Pose::worlds() of this rig); allocates nothing.
+  // the node transforms of a pose of this rig, its morphed meshes shaped at the pose's weights
+  // (reshaped on the CPU and their vertices sent again, only when a weight changed); allocates
+  // nothing.
   const std::shared_ptr<const scene::Rig>& rig() const { return rig_; }
-  void pose(const std::vector<glm::dmat4>& node_worlds);
+  void pose(const scene::Pose& pose);
   // Counts the poses that moved a draw: the AO of an earlier count is not this scene's any more.
   std::uint64_t pose_version() const { return pose_version_; }
   // The draws of blended materials (alphaMode BLEND), drawn after the opaque image by the forward
@@ -105,6 +108,16 @@ class SceneGpu {
   int light_count_ = 0;
   std::shared_ptr<const scene::Rig> rig_;
   std::uint64_t pose_version_ = 0;
+  // A mesh the frames reshape (scene::Mesh::morph): its vertices, targets and rest weights as the
+  // scene gave them, the node whose weights shape it and the weights its buffer holds now.
+  struct Morphed {
+    int mesh;
+    int node;
+    scene::Mesh source;
+    std::vector<float> shown;
+  };
+  std::vector<Morphed> morphed_;
+  std::vector<scene::Vertex> shaped_;  // as long as the longest morphed mesh
 };
 
 }  // namespace render

@@ -1,7 +1,7 @@
 #pragma once
 // glTF animation of node transforms: the node tree of the shown scene, the file's animations
-// (translation, rotation and scale channels, STEP, LINEAR and CUBICSPLINE samplers), and the pose
-// of every node at a time. Skins and morph targets are not animated (the loader warns).
+// (translation, rotation, scale and morph target weights channels, STEP, LINEAR and CUBICSPLINE
+// samplers), and the pose of every node at a time. Skins are not animated (the loader warns).
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -12,7 +12,7 @@
 namespace scene {
 
 enum class Interpolation { step, linear, cubic_spline };
-enum class AnimatedProperty { translation, rotation, scale };
+enum class AnimatedProperty { translation, rotation, scale, weights };
 
 struct AnimationChannel {
   int node = 0;  // index into Rig::nodes
@@ -22,6 +22,10 @@ struct AnimationChannel {
   // xyz (translation, scale) or a quaternion as glTF writes it, x y z w; CUBICSPLINE: three per
   // key, in-tangent, value, out-tangent.
   std::vector<glm::vec4> values;
+  // A weights channel's instead: `width` weights (the node's mesh's morph targets) per value, in
+  // the same order as `values` would hold them.
+  size_t width = 0;
+  std::vector<float> weights;
 };
 
 struct Animation {
@@ -29,6 +33,9 @@ struct Animation {
   std::vector<AnimationChannel> channels;
   double duration = 0.0;  // the last key of any channel
 };
+
+// glTF's local transform: translation * rotation * scale.
+glm::dmat4 trs_matrix(const glm::dvec3& translation, const glm::dquat& rotation, const glm::dvec3& scale);
 
 // The shown scene's nodes, parents before children, and what moves them.
 struct Rig {
@@ -39,6 +46,10 @@ struct Rig {
     glm::dvec3 scale{1.0};
     bool uses_matrix = false;  // a node given by a matrix (glTF forbids animating it)
     glm::dmat4 matrix{1.0};
+    glm::dmat4 local() const { return uses_matrix ? matrix : trs_matrix(translation, rotation, scale); }
+    // The morph target weights of the node's mesh as the file gives them (the node's, else its
+    // mesh's, else zeros); empty where its mesh has no targets.
+    std::vector<float> weights;
   };
   std::vector<Node> nodes;
   std::vector<Animation> animations;
@@ -58,6 +69,9 @@ bool select_animation(const Rig* rig, const std::string& spec, int& selection, s
 // interpolates (rotations by slerp along the shorter arc), CUBICSPLINE is glTF's Hermite spline
 // (rotations normalised after).
 glm::dvec4 sample(const AnimationChannel& channel, double seconds);
+// A weights channel's `width` values at `seconds` into `out`, interpolated as sample() does (each
+// weight as a scalar).
+void sample_weights(const AnimationChannel& channel, double seconds, float* out);
 
 // The world transform of every node of a rig at a time, made without allocating once constructed.
 class Pose {
@@ -67,6 +81,8 @@ class Pose {
   // channel of it moves keep their file transforms.
   void at(int selection, double seconds);
   const std::vector<glm::dmat4>& worlds() const { return worlds_; }
+  // Every node's morph target weights at the pose (empty for a node without targets).
+  const std::vector<std::vector<float>>& weights() const { return weights_; }
   const Rig& rig() const { return *rig_; }
 
  private:
@@ -78,12 +94,16 @@ class Pose {
   std::shared_ptr<const Rig> rig_;
   std::vector<Local> locals_;
   std::vector<glm::dmat4> worlds_;
+  std::vector<std::vector<float>> weights_;
 };
 
 struct Scene;
 // Places `scene`'s instances as `pose` (of scene.rig) has posed its nodes. The bounds stay those
 // of the whole animation (include_animation_in_bounds), so every pose is framed alike.
 void pose_instances(Scene& scene, const Pose& pose);
+// Shapes the meshes with morph targets at the weights `pose` gives the nodes that show them (the
+// loader gives each such node a mesh of its own).
+void pose_meshes(Scene& scene, const Pose& pose);
 // Widens scene.bounds to hold every pose of its animations (each alone and all together, sampled
 // 32 times over their loop), so a camera framing the bounds keeps every moving part in view.
 void include_animation_in_bounds(Scene& scene);

@@ -28,8 +28,26 @@ struct Mesh {
   std::vector<glm::vec4> tangents;
   std::vector<glm::vec2> uv1;
   int material = 0;
-  glm::vec3 min{0.0f}, max{0.0f};  // bounds of the positions
+  glm::vec3 min{0.0f}, max{0.0f};  // bounds of the positions (an animated morph's: of every shape it takes)
+  // Morph targets (glTF 3.7.2.2) kept where an animation changes the weights; a mesh whose weights
+  // never change is loaded in its shape and keeps none. `vertices` hold the shape at `weights`.
+  struct Morph {
+    // Per target, the displacement of each vertex's position and of its normal (empty where the
+    // target moves none).
+    std::vector<std::vector<glm::vec3>> positions, normals;
+    std::vector<float> weights;
+    // The file's normals, unnormalised sums are taken from them; empty for a mesh without NORMAL,
+    // whose flat normals are made again from each shape's triangles.
+    std::vector<glm::vec3> base_normals;
+    size_t target_count() const { return weights.size(); }
+  };
+  Morph morph;
 };
+
+// `mesh`'s vertices at `weights` (target_count() of them) into `out` (as long as mesh.vertices):
+// positions moved by the weighted displacements from the shape the mesh holds, normals the
+// normalised weighted sum of the file's (or each triangle's own for flat normals). Allocates nothing.
+void morph_vertices(const Mesh& mesh, const float* weights, std::vector<Vertex>& out);
 
 enum class Filter { nearest, linear };
 

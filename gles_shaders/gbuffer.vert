@@ -1,5 +1,8 @@
 // G-buffer and depth prepass vertex stage (HAS_NORMAL_TEXTURE: with tangents; HAS_UV1: a second UV mapping). Positions arrive camera-relative: the model-view matrix
 // is composed in double precision on the CPU, so large world coordinates lose nothing here.
+// SKINNED: each vertex is first moved by the weighted blend of its four joints' matrices, which a
+// texture holds relative to the draw's anchor (see SceneGpu: three RGBA32F texels per joint, the
+// rows of its affine matrix, 64 joints to a row of the texture).
 // LIGHTFIELD_MODULES: u_model_view takes the model to physical space, the module's world-to-image
 // transform (lightfield.glsl) places the vertex, and the world position goes to the positions texture.
 precision highp float;
@@ -20,6 +23,21 @@ layout(location = 4) in vec2 a_uv1;
 out vec2 v_uv1;
 #endif
 
+#ifdef SKINNED
+layout(location = 5) in uvec4 a_joints;
+layout(location = 6) in vec4 a_joint_weights;
+uniform highp sampler2D u_joint_matrices;
+uniform int u_joint_base;
+
+mat4 joint_matrix(uint joint) {
+  int index = u_joint_base + int(joint);
+  ivec2 at = ivec2((index % 64) * 3, index / 64);
+  // The texels are the rows; a mat4 is built from columns.
+  return transpose(mat4(texelFetch(u_joint_matrices, at, 0), texelFetch(u_joint_matrices, at + ivec2(1, 0), 0),
+                        texelFetch(u_joint_matrices, at + ivec2(2, 0), 0), vec4(0.0, 0.0, 0.0, 1.0)));
+}
+#endif
+
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;
@@ -31,12 +49,28 @@ out vec2 v_uv;
 invariant gl_Position;
 
 void main() {
-  vec4 view = u_model_view * vec4(a_position, 1.0);
-  v_view_normal = u_normal_matrix * a_normal;
+  vec3 position = a_position;
+  vec3 normal = a_normal;
+#ifdef HAS_NORMAL_TEXTURE
+  vec3 tangent = a_tangent.xyz;
+#endif
+#ifdef SKINNED
+  mat4 skin = a_joint_weights.x * joint_matrix(a_joints.x) + a_joint_weights.y * joint_matrix(a_joints.y) +
+              a_joint_weights.z * joint_matrix(a_joints.z) + a_joint_weights.w * joint_matrix(a_joints.w);
+  position = (skin * vec4(position, 1.0)).xyz;
+  // The blend's linear part for the normal too: exact for rotations and uniform scales, which is
+  // what joints carry; the fragment stage normalises.
+  normal = mat3(skin) * normal;
+#ifdef HAS_NORMAL_TEXTURE
+  tangent = mat3(skin) * tangent;
+#endif
+#endif
+  vec4 view = u_model_view * vec4(position, 1.0);
+  v_view_normal = u_normal_matrix * normal;
   v_uv = a_uv;
 #ifdef HAS_NORMAL_TEXTURE
   // A tangent lies in the surface: it turns with the model-view, not with the normal matrix.
-  v_view_tangent = vec4(mat3(u_model_view) * a_tangent.xyz, a_tangent.w);
+  v_view_tangent = vec4(mat3(u_model_view) * tangent, a_tangent.w);
 #endif
 #ifdef HAS_UV1
   v_uv1 = a_uv1;

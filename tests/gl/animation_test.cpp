@@ -1,6 +1,8 @@
 // An animated scene on a real context: a pose moves the draws of the nodes it moves, the frame
 // shows them there, and the AO of the old pose is not kept as if the scene stood still.
 #include "scene/animation.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 #include "harness.h"
 #include "scene/procedural.h"
 
@@ -144,6 +146,102 @@ TEST_P(Animated, APoseReshapesAMorphedMeshAsTheCpuShapesIt) {
   for (size_t i = 0; i < shaped_on_gpu.size(); ++i)
     worst = std::max(worst, std::abs(int(shaped_on_gpu[i]) - int(shaped_on_cpu[i])));
   EXPECT_LE(worst, 2) << "the GPU's shape differs from the CPU's";
+}
+
+// A red box whose top half follows a joint that a pose tilts 50 degrees about +Z, on a white floor:
+// moved in the vertex stage by the joint matrices, the frame is the one of the same box moved on the
+// CPU (scene::skin_vertices) and uploaded unskinned.
+TEST_P(Animated, APoseBendsASkinnedMeshAsTheCpuSkinsIt) {
+  auto rig = std::make_shared<scene::Rig>();
+  rig->nodes.resize(2);
+  rig->nodes[1].parent = 0;
+  rig->nodes[1].translation = {0, 0.5, 0};
+  scene::Rig::Skin skin;
+  skin.joints = {0, 1};
+  skin.inverse_bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), glm::dvec3(0, -0.5, 0))};
+  rig->skins = {skin};
+  scene::AnimationChannel tilt;
+  tilt.node = 1;
+  tilt.property = scene::AnimatedProperty::rotation;
+  const double half = glm::radians(50.0) / 2;
+  tilt.times = {0.0f, 1.0f};
+  tilt.values = {{0, 0, 0, 1}, {0, 0, float(std::sin(half)), float(std::cos(half))}};
+  rig->animations.push_back({"tilt", {tilt}, 1.0});
+  auto build = [&](const std::vector<glm::dmat4>* bent) {
+    scene::Scene built;
+    scene::Material white, red;
+    red.base_color = glm::vec4(1, 0, 0, 1);
+    built.materials = {white, red};
+    scene::add_instance(built, scene::make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 0));
+    scene::Mesh box = scene::make_box({-0.25f, 0.0f, -0.25f}, {0.25f, 1.0f, 0.25f}, 1);
+    for (const scene::Vertex& v : box.vertices) {
+      box.joints.push_back({v.position.y > 0.5f ? 1 : 0, 0, 0, 0});
+      box.joint_weights.emplace_back(1, 0, 0, 0);
+    }
+    if (bent) {  // skinned here, drawn as it is
+      std::vector<scene::Vertex> moved(box.vertices.size());
+      scene::skin_vertices(box, *bent, moved);
+      box.vertices = moved;
+      box.joints.clear();
+      box.joint_weights.clear();
+      scene::add_instance(built, std::move(box));
+    } else {
+      scene::add_instance(built, std::move(box));
+      built.instances[1].skin = 0;
+      built.instances[1].node = 0;
+      scene::Pose rest(rig);
+      scene::skin_matrices(rig->skins[0], rest.worlds(), built.instances[1].skin_matrices);
+      built.rig = rig;
+    }
+    scene::update_bounds(built);
+    built.bounds.min = glm::dvec3(-3, 0, -3);  // both framed alike
+    built.bounds.max = glm::dvec3(3, 1, 3);
+    return built;
+  };
+  render::FrameSettings settings;
+  settings.width = settings.height = 96;
+  settings.check_errors = true;
+  scene::Framing framing;
+  framing.azimuth_deg = 0.0;
+  framing.elevation_deg = 30.0;
+  scene::Pose pose(rig);
+  pose.at(scene::Rig::kAllAnimations, 1.0 - 1e-9);
+  std::vector<glm::dmat4> bent;
+  scene::skin_matrices(rig->skins[0], pose.worlds(), bent);
+  auto redness = [&](const Harness& h, glm::dvec3 world) {
+    const std::vector<uint8_t> color = h.renderer.read_color();
+    const glm::ivec2 p = h.pixel_of(world);
+    const size_t i = static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4);
+    return int(color[i]) - int(color[i + 1]);
+  };
+  // Where the tilted top's centre goes: the joint at y = 0.5, the top's centre half a unit above
+  // it, turned 50 degrees towards -x.
+  const glm::dvec3 tilted_top(-0.5 * std::sin(glm::radians(50.0)) * 0.75, 0.5 + 0.5 * std::cos(glm::radians(50.0)) * 0.75, 0);
+  std::vector<uint8_t> bent_on_gpu;
+  {
+    Harness gpu;  // one context at a time (see above)
+    ASSERT_TRUE(gpu.start(GetParam(), build(nullptr), settings, framing));
+    gpu.renderer.render(gpu.camera);
+    EXPECT_LT(redness(gpu, tilted_top), 20);
+    const std::uint64_t version = gpu.renderer.scene().pose_version();
+    gpu.renderer.pose(pose);
+    EXPECT_GT(gpu.renderer.scene().pose_version(), version) << "a bent mesh is a moved scene";
+    for (int frame = 0; frame < 24; ++frame) gpu.renderer.render(gpu.camera);
+    EXPECT_EQ(gpu.renderer.gl_error(), "");
+    EXPECT_GT(redness(gpu, tilted_top), 60);
+    bent_on_gpu = gpu.renderer.read_color();
+    const std::uint64_t posed = gpu.renderer.scene().pose_version();
+    gpu.renderer.pose(pose);
+    EXPECT_EQ(gpu.renderer.scene().pose_version(), posed) << "posed again where it is: nothing moved";
+  }
+  Harness cpu;
+  ASSERT_TRUE(cpu.start(GetParam(), build(&bent), settings, framing));
+  for (int frame = 0; frame < 24; ++frame) cpu.renderer.render(cpu.camera);
+  const std::vector<uint8_t> bent_on_cpu = cpu.renderer.read_color();
+  ASSERT_EQ(bent_on_gpu.size(), bent_on_cpu.size());
+  int worst = 0;
+  for (size_t i = 0; i < bent_on_gpu.size(); ++i) worst = std::max(worst, std::abs(int(bent_on_gpu[i]) - int(bent_on_cpu[i])));
+  EXPECT_LE(worst, 2) << "the vertex stage's skinning differs from the CPU's";
 }
 
 INSTANTIATE_TEST_SUITE_P(Platforms, Animated, ::testing::Values("egl", "osmesa"), test::platform_name);

@@ -5,6 +5,8 @@
 #include "gltf_fixture.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/string_cast.hpp>
 
 #include <cmath>
 
@@ -312,6 +314,105 @@ TEST_F(GltfAnimation, MorphTargetsShapeTheMeshAtTheNodesWeightsAndTheAnimationRe
   pose.at(scene::Rig::kNoAnimation, 1.0);
   scene::pose_meshes(loaded, pose);
   EXPECT_NEAR(loaded.meshes[0].vertices[2].position.y - base.y, 1.25, 1e-6);
+}
+
+// A skinned triangle: (0,0,0) and (1,0,0) follow joint 0 (node 1, at the origin), (0,2,0) follows
+// joint 1 (node 2, one unit up, bound there), which an animation turns 90 degrees about +Z over a
+// second. The mesh's own node sits at x = 5, which glTF says a skinned mesh ignores.
+class GltfSkin : public GltfLoader {
+ protected:
+  json skinned() {
+    json doc = triangle({0, 0, 0, 1, 0, 0, 0, 2, 0});
+    doc["scenes"][0]["nodes"] = {0, 1};
+    doc["nodes"] = {{{"mesh", 0}, {"skin", 0}, {"translation", {5, 0, 0}}}, {{"children", {2}}}, {{"translation", {0, 1, 0}}}};
+    auto add = [&](std::vector<unsigned char> bytes, int component_type, size_t count, const char* type) {
+      const size_t buffer = doc["buffers"].size(), view = doc["bufferViews"].size();
+      doc["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}});
+      doc["bufferViews"].push_back({{"buffer", buffer}, {"byteLength", bytes.size()}});
+      doc["accessors"].push_back({{"bufferView", view}, {"componentType", component_type}, {"count", count}, {"type", type}});
+      return doc["accessors"].size() - 1;
+    };
+    std::vector<unsigned char> joints, weights, inverse_bind, times, turns;
+    append<uint16_t>(joints, {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0});
+    append<float>(weights, {1, 0, 0, 0, 1, 0, 0, 0, 0, 0.5f, 0, 0});  // the last scaled to sum to 1
+    append<float>(inverse_bind, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+    append<float>(inverse_bind, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1});
+    append<float>(times, {0, 1});
+    const float half = float(std::sqrt(0.5));
+    append<float>(turns, {0, 0, 0, 1, 0, 0, half, half});
+    json& attributes = doc["meshes"][0]["primitives"][0]["attributes"];
+    attributes["JOINTS_0"] = add(joints, 5123, 3, "VEC4");
+    attributes["WEIGHTS_0"] = add(weights, 5126, 3, "VEC4");
+    doc["skins"] = {{{"joints", {1, 2}}, {"inverseBindMatrices", add(inverse_bind, 5126, 2, "MAT4")}}};
+    const size_t input = add(times, 5126, 2, "SCALAR"), output = add(turns, 5126, 2, "VEC4");
+    doc["animations"] = {{{"channels", {{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}}}},
+                          {"samplers", {{{"input", input}, {"output", output}}}}}};
+    return doc;
+  }
+  // The instance's vertices as the vertex stage moves them, in world space.
+  static std::vector<glm::dvec3> skinned_positions(const scene::Scene& loaded) {
+    const scene::Instance& instance = loaded.instances[0];
+    std::vector<glm::dmat4> matrices;
+    for (const glm::dmat4& m : instance.skin_matrices) matrices.push_back(m * instance.offset);
+    const scene::Mesh& mesh = loaded.meshes[static_cast<size_t>(instance.mesh)];
+    std::vector<scene::Vertex> out(mesh.vertices.size());
+    scene::skin_vertices(mesh, matrices, out);
+    std::vector<glm::dvec3> positions;
+    for (const scene::Vertex& v : out) positions.emplace_back(v.position);
+    return positions;
+  }
+};
+
+TEST_F(GltfSkin, JointsMoveTheirVerticesAndTheMeshsOwnNodeIsIgnored) {
+  scene::Scene loaded = load_ok(write(skinned()));
+  ASSERT_TRUE(loaded.rig);
+  ASSERT_EQ(loaded.rig->skins.size(), 1u);
+  ASSERT_EQ(loaded.instances.size(), 1u);
+  EXPECT_EQ(loaded.instances[0].skin, 0);
+  const scene::Mesh& mesh = loaded.meshes[0];
+  ASSERT_EQ(mesh.joints.size(), 3u);
+  EXPECT_EQ(mesh.joint_weights[2], glm::vec4(0, 1, 0, 0));
+  auto near = [](const glm::dvec3& a, const glm::dvec3& b) { return glm::distance(a, b) < 1e-5; };
+  // At rest the bind pose: the vertices where the file put them, not 5 units along x.
+  std::vector<glm::dvec3> at = skinned_positions(loaded);
+  EXPECT_TRUE(near(at[0], {0, 0, 0}) && near(at[1], {1, 0, 0}) && near(at[2], {0, 2, 0}))
+      << glm::to_string(at[0]) << glm::to_string(at[2]);
+  scene::Pose pose(loaded.rig);
+  for (const auto& [t, expected] :
+       std::vector<std::pair<double, glm::dvec3>>{{0.5, {-std::sqrt(0.5), 1 + std::sqrt(0.5), 0}}, {1.0 - 1e-9, {-1, 1, 0}}}) {
+    pose.at(scene::Rig::kAllAnimations, t);
+    scene::pose_instances(loaded, pose);
+    at = skinned_positions(loaded);
+    EXPECT_TRUE(near(at[2], expected)) << t << ": " << glm::to_string(at[2]);
+    EXPECT_TRUE(near(at[1], {1, 0, 0})) << "joint 0 does not move";
+  }
+  // The bounds hold every pose: the tip swings from x = 0 to -1.
+  scene::Scene framed = load_ok(write(skinned()));
+  scene::include_animation_in_bounds(framed);
+  EXPECT_NEAR(framed.bounds.min.x, -1.0, 0.01);  // 32 poses over the loop: the last at 87 degrees
+  EXPECT_NEAR(framed.bounds.max.y, 2.0, 1e-3);
+  EXPECT_LT(framed.bounds.max.x, 1.01) << "the mesh's own node (x = 5) places nothing";
+}
+
+TEST_F(GltfSkin, BadSkinsAreRefusedByField) {
+  auto refused = [&](const json& doc, const std::string& expected) {
+    const std::string error = error_of(write(doc));
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  };
+  json far_joint = skinned();
+  far_joint["skins"][0]["joints"] = {1};
+  far_joint["skins"][0].erase("inverseBindMatrices");
+  refused(far_joint,
+          "meshes[0].primitives[0].attributes.JOINTS_0: element 2 names joint 1, expected less than the skin's 1 joints");
+  json few_matrices = skinned();
+  few_matrices["accessors"][4]["count"] = 1;
+  refused(few_matrices, "skins[0].inverseBindMatrices: 1 matrices for 2 joints; expected one per joint");
+  json hidden = skinned();
+  hidden["scenes"][0]["nodes"] = {0};
+  refused(hidden, "skins[0].joints[0]: node 1 is not in the shown scene");
+  json bad_skin = skinned();
+  bad_skin["nodes"][0]["skin"] = 3;
+  refused(bad_skin, "nodes[0].skin: 3 out of range (there are 1)");
 }
 
 }  // namespace

@@ -98,6 +98,7 @@ void draw_one(const PassContext& context, const RasterProgram& program, const Sc
     gl::api.Disable(GL_CULL_FACE);
   else
     gl::api.Enable(GL_CULL_FACE);
+  if (bits & features::skinned) gl::api.Uniform1i(program.joint_base, draw.joint_base);
   const SceneGpu::Mesh& mesh = scene.meshes()[static_cast<size_t>(draw.mesh)];
   gl::api.BindVertexArray(mesh.vao.id());
   gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
@@ -126,6 +127,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
   const RasterProgram& depth_program = modules ? programs.module_depth_only : programs.depth_only;
   const RasterProgram& masked_depth_program = modules ? programs.module_depth_masked : programs.depth_masked;
   if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, context.targets.module_ubo.id());
+  bind_texture(unit_joints, scene.joint_matrices());
   const glm::mat4 projection(context.view.projection);
   const RasterProgram* bound = nullptr;
   // A light field module has no forward pass: its blended materials are alpha-tested at their cutoff.
@@ -134,10 +136,13 @@ void draw_scene(const PassContext& context, bool depth_only) {
     for (const SceneGpu::Draw& draw : *draws) {
       const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
       const bool masked = material.alpha_tested();
-      const unsigned bits = material_features(material, untextured_variant);
+      const bool skinned = draw.skin >= 0;
+      const unsigned bits = material_features(material, untextured_variant) | (skinned ? features::skinned : 0);
       // Every variant a scene's materials need was compiled when the view was configured for it.
-      const RasterProgram* program =
-          depth_only ? (masked ? &masked_depth_program : &depth_program) : programs.gbuffer(bits, modules);
+      const RasterProgram* program = !depth_only ? programs.gbuffer(bits, modules)
+                                     : skinned   ? programs.skinned_depth(masked, modules)
+                                     : masked    ? &masked_depth_program
+                                                 : &depth_program;
       if (program == nullptr) {
         context.report_missing_program("g-buffer: a material's program was not prepared; its draws are skipped");
         continue;
@@ -168,11 +173,13 @@ void blend_pass(const PassContext& context, bool srgb) {
   gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, scene.environment().specular.id());
   bind_texture(unit_brdf_lut, context.programs.brdf_lut);
   bind_texture(unit_linear_depth, context.targets.linear_depth);
+  bind_texture(unit_joints, scene.joint_matrices());
   const RasterProgram* bound = nullptr;
   for (const auto& [key, index] : order) {
     const SceneGpu::Draw& draw = draws[static_cast<size_t>(index)];
     const unsigned bits =
-        material_features(scene.materials()[static_cast<size_t>(draw.material)], untextured_variant) & ~features::alpha_mask;
+        (material_features(scene.materials()[static_cast<size_t>(draw.material)], untextured_variant) & ~features::alpha_mask) |
+        (draw.skin >= 0 ? features::skinned : 0);
     const RasterProgram* program = context.programs.forward(bits, srgb);
     if (program == nullptr) {  // prepared with the scene (prepare_material_programs)
       context.report_missing_program("blend: a blended material's program was not prepared; its draws are skipped");
@@ -236,11 +243,21 @@ bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const 
                                bool srgb_target, std::string& error) {
   for (const scene::Material& material : scene.materials())
     if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant), modules, error)) return false;
+  // A skinned draw's variants besides (light field modules draw blended materials in the G-buffer).
+  for (const std::vector<SceneGpu::Draw>* draws : {&scene.draws(), &scene.blended_draws()})
+    for (const SceneGpu::Draw& draw : *draws) {
+      if (draw.skin < 0) continue;
+      const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
+      if (!programs.prepare_skinned_depth(modules, error) ||
+          !programs.prepare_gbuffer(material_features(material, settings.untextured_variant) | features::skinned, modules, error))
+        return false;
+    }
   if (modules || settings.output != Picture::color) return true;
   for (const SceneGpu::Draw& draw : scene.blended_draws()) {
     const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
-    if (!programs.prepare_forward(material_features(material, settings.untextured_variant) & ~features::alpha_mask, srgb_target,
-                                  error))
+    const unsigned skinned = draw.skin >= 0 ? features::skinned : 0;
+    if (!programs.prepare_forward((material_features(material, settings.untextured_variant) & ~features::alpha_mask) | skinned,
+                                  srgb_target, error))
       return false;
   }
   return true;

@@ -26,6 +26,7 @@ std::string gbuffer_defines(unsigned bits) {
   define(features::normal_uv1, "NORMAL_UV1");
   define(features::occlusion_uv1, "OCCLUSION_UV1");
   define(features::emissive_uv1, "EMISSIVE_UV1");
+  define(features::skinned, "SKINNED");
   if (bits & (features::metallic_roughness_uv1 | features::normal_uv1 | features::occlusion_uv1 | features::emissive_uv1))
     defines += "#define HAS_UV1 1\n";
   return defines;
@@ -45,6 +46,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.material = gl::uniform(*out.program, "u_material");
   out.emissive = gl::uniform(*out.program, "u_emissive");
   out.frame_handedness = gl::uniform(*out.program, "u_frame_handedness");
+  out.joint_base = gl::uniform(*out.program, "u_joint_base");
   gl::api.UseProgram(out.program->id());
   const std::pair<const char*, int> samplers[] = {{"u_base_color_texture", unit_base_color},
                                                   {"u_metallic_roughness_texture", unit_metallic_roughness},
@@ -53,7 +55,8 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
                                                   {"u_emissive_texture", unit_emissive},
                                                   {"u_specular", unit_specular},
                                                   {"u_brdf_lut", unit_brdf_lut},
-                                                  {"u_linear_depth", unit_linear_depth}};
+                                                  {"u_linear_depth", unit_linear_depth},
+                                                  {"u_joint_matrices", unit_joints}};
   for (const auto& [name, unit] : samplers)
     if (const GLint location = gl::uniform(*out.program, name); location >= 0) gl::api.Uniform1i(location, unit);
   return true;
@@ -155,6 +158,19 @@ bool Programs::prepare_gbuffer(unsigned feature_bits, bool modules, std::string&
     defines += std::string("#define LIGHTFIELD_MODULES 1\n") + (modules_without_material ? "#define NO_MATERIAL_TARGET 1\n" : "");
   if (!build_raster(*cache_, program, "gbuffer.frag", defines, error)) {
     program = RasterProgram{};
+    return false;
+  }
+  gl::api.UseProgram(0);
+  return true;
+}
+
+bool Programs::prepare_skinned_depth(bool modules, std::string& error) {
+  std::array<RasterProgram, 2>& programs = skinned_depth_[modules ? 1 : 0];
+  if (programs[0].program != nullptr) return true;
+  const std::string defines = std::string("#define SKINNED 1\n") + (modules ? "#define LIGHTFIELD_MODULES 1\n" : "");
+  if (!build_raster(*cache_, programs[0], "depth_only.frag", defines, error) ||
+      !build_raster(*cache_, programs[1], "depth_only.frag", defines + kMasked, error)) {
+    programs = {};
     return false;
   }
   gl::api.UseProgram(0);

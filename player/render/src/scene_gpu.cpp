@@ -16,15 +16,20 @@ namespace {
 // The smallest slice worth a call: below this the per-call overhead dominates.
 constexpr size_t kMinSlice = 64 * 1024;
 
-// A mesh's bytes go up as four consecutive ranges: vertices, tangents, second UVs, indices.
+// A mesh's bytes go up as consecutive ranges: vertices, tangents, second UVs, joints, joint
+// weights, indices.
 struct Ranges {
-  size_t vertices, tangents, uv1, indices;
-  size_t total() const { return vertices + tangents + uv1 + indices; }
+  size_t vertices, tangents, uv1, joints, joint_weights, indices;
+  size_t total() const { return vertices + tangents + uv1 + joints + joint_weights + indices; }
 };
 Ranges ranges_of(const scene::Mesh& mesh) {
-  return {mesh.vertices.size() * sizeof(scene::Vertex), mesh.tangents.size() * sizeof(glm::vec4),
-          mesh.uv1.size() * sizeof(glm::vec2), mesh.indices.size() * sizeof(uint32_t)};
+  return {mesh.vertices.size() * sizeof(scene::Vertex),  mesh.tangents.size() * sizeof(glm::vec4),
+          mesh.uv1.size() * sizeof(glm::vec2),           mesh.joints.size() * sizeof(mesh.joints[0]),
+          mesh.joint_weights.size() * sizeof(glm::vec4), mesh.indices.size() * sizeof(uint32_t)};
 }
+
+// The skinned draws' joints, 64 to a row of the texture (three texels each).
+constexpr int kJointsPerRow = 64;
 
 gl::Buffer stream(GLuint location, GLint components, size_t bytes) {
   gl::Buffer buffer = gl::make_buffer();
@@ -44,6 +49,15 @@ SceneGpu::Mesh allocate_mesh(const scene::Mesh& mesh) {
   // read them are only used for materials that make the loader provide them.
   if (bytes.tangents) gpu.tangents = stream(3, 4, bytes.tangents);
   if (bytes.uv1) gpu.uv1 = stream(4, 2, bytes.uv1);
+  // Attributes 5 (joints, integers) and 6 (their weights) only for a skinned mesh.
+  if (bytes.joints) {
+    gpu.joints = gl::make_buffer();
+    gl::api.BindBuffer(GL_ARRAY_BUFFER, gpu.joints.id());
+    gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.joints), nullptr, GL_STATIC_DRAW);
+    gl::api.EnableVertexAttribArray(5);
+    gl::api.VertexAttribIPointer(5, 4, GL_UNSIGNED_SHORT, 0, nullptr);
+    gpu.joint_weights = stream(6, 4, bytes.joint_weights);
+  }
   gpu.vertices = gl::make_buffer();
   gl::api.BindBuffer(GL_ARRAY_BUFFER, gpu.vertices.id());
   // A morphed mesh's vertices are sent again whenever its weights change.
@@ -89,6 +103,9 @@ void SceneGpu::begin(std::shared_ptr<const scene::Scene> scene, const gl::Caps& 
   textures_.clear();
   draws_.clear();
   blended_.clear();
+  morphed_.clear();
+  joint_rows_.clear();
+  joint_matrices_ = gl::Texture();
   rig_.reset();
   materials_ = source_->materials;
   bytes_ = 0;
@@ -117,6 +134,8 @@ bool SceneGpu::step(size_t budget_bytes) {
       part(gpu.vertices, mesh.vertices.data(), bytes.vertices);
       part(gpu.tangents, mesh.tangents.data(), bytes.tangents);
       part(gpu.uv1, mesh.uv1.data(), bytes.uv1);
+      part(gpu.joints, mesh.joints.data(), bytes.joints);
+      part(gpu.joint_weights, mesh.joint_weights.data(), bytes.joint_weights);
       part(gpu.indices, mesh.indices.data(), bytes.indices);
       spent += end - offset_;
       offset_ = end;
@@ -216,8 +235,26 @@ void SceneGpu::finish() {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     const glm::dvec3 box_centre = glm::dvec3(mesh.min + mesh.max) * 0.5;
     const bool blended = materials_[static_cast<size_t>(mesh.material)].alpha_mode == scene::AlphaMode::blend;
+    const bool skinned = instance.skin >= 0 && !mesh.joints.empty();
     (blended ? blended_ : draws_)
-        .push_back({instance.mesh, mesh.material, instance.world, box_centre, instance.node, instance.offset});
+        .push_back({instance.mesh, mesh.material, instance.world, box_centre, instance.node, instance.offset,
+                    skinned ? instance.skin : -1, static_cast<int>(joint_rows_.size() / 3)});
+    if (!skinned) continue;
+    Draw& draw = (blended ? blended_ : draws_).back();
+    // Whole rows of three texels per joint; the draw's joints start where the last draw's end.
+    joint_rows_.resize(joint_rows_.size() + instance.skin_matrices.size() * 3);
+    write_joints(draw, instance.skin_matrices.size(), [&](size_t j) { return instance.skin_matrices[j]; });
+  }
+  if (!joint_rows_.empty()) {
+    const size_t joints = joint_rows_.size() / 3;
+    const size_t rows = (joints + kJointsPerRow - 1) / kJointsPerRow;
+    joint_rows_.resize(rows * kJointsPerRow * 3, glm::vec4(0.0f));
+    joint_matrices_ = gl::make_texture();
+    gl::api.BindTexture(GL_TEXTURE_2D, joint_matrices_.id());
+    gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, kJointsPerRow * 3, static_cast<GLsizei>(rows));
+    gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    upload_joints();
   }
   rig_ = scene.rig;
   for (const scene::Instance& instance : scene.instances) {
@@ -233,7 +270,8 @@ void SceneGpu::finish() {
   // By G-buffer variant, one program switch per group; the alpha-tested last (see draws()).
   auto group = [&](const Draw& draw) {
     const scene::Material& material = materials_[static_cast<size_t>(draw.material)];
-    return material.alpha_tested() ? int(features::count) : int(material_features(material, true));
+    const unsigned skinned = draw.skin >= 0 ? features::skinned : 0;
+    return material.alpha_tested() ? int(features::count | skinned) : int(material_features(material, true) | skinned);
   };
   std::stable_sort(draws_.begin(), draws_.end(), [&](const Draw& a, const Draw& b) { return group(a) < group(b); });
   bounds_ = scene.bounds;
@@ -246,9 +284,47 @@ void SceneGpu::finish() {
   source_.reset();
 }
 
+template <typename JointWorld>
+bool SceneGpu::write_joints(const Draw& draw, size_t joints, const JointWorld& joint_world) {
+  // Relative to the anchor, so the texture holds small numbers even far from the origin.
+  const glm::dmat4 from_anchor = glm::inverse(draw.world);
+  bool changed = false;
+  for (size_t j = 0; j < joints; ++j) {
+    const glm::mat4 m(from_anchor * joint_world(j) * draw.offset);
+    glm::vec4* rows = &joint_rows_[(static_cast<size_t>(draw.joint_base) + j) * 3];
+    for (int r = 0; r < 3; ++r) {
+      const glm::vec4 row(m[0][r], m[1][r], m[2][r], m[3][r]);
+      changed = changed || row != rows[r];
+      rows[r] = row;
+    }
+  }
+  return changed;
+}
+
+void SceneGpu::upload_joints() {
+  gl::api.BindTexture(GL_TEXTURE_2D, joint_matrices_.id());
+  gl::api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kJointsPerRow * 3, static_cast<GLsizei>(joint_rows_.size() / (kJointsPerRow * 3)),
+                        GL_RGBA, GL_FLOAT, joint_rows_.data());
+  gl::api.BindTexture(GL_TEXTURE_2D, 0);
+}
+
 void SceneGpu::pose(const scene::Pose& pose) {
   const std::vector<glm::dmat4>& node_worlds = pose.worlds();
   bool moved = false;
+  bool bent = false;
+  for (std::vector<Draw>* draws : {&draws_, &blended_})
+    for (Draw& draw : *draws) {
+      if (draw.skin < 0) continue;
+      const scene::Rig::Skin& skin = rig_->skins[static_cast<size_t>(draw.skin)];
+      const glm::dmat4& anchor = node_worlds[static_cast<size_t>(skin.joints[0])];
+      moved = moved || anchor != draw.world;
+      draw.world = anchor;
+      bent = write_joints(draw, skin.joints.size(),
+                          [&](size_t j) { return node_worlds[static_cast<size_t>(skin.joints[j])] * skin.inverse_bind[j]; }) ||
+             bent;
+    }
+  if (bent) upload_joints();
+  moved = moved || bent;
   for (Morphed& morphed : morphed_) {
     const std::vector<float>& weights = pose.weights()[static_cast<size_t>(morphed.node)];
     if (weights.size() != morphed.shown.size() || weights == morphed.shown) continue;
@@ -261,7 +337,7 @@ void SceneGpu::pose(const scene::Pose& pose) {
   if (!morphed_.empty()) gl::api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
   for (std::vector<Draw>* draws : {&draws_, &blended_})
     for (Draw& draw : *draws) {
-      if (draw.node < 0 || static_cast<size_t>(draw.node) >= node_worlds.size()) continue;
+      if (draw.skin >= 0 || draw.node < 0 || static_cast<size_t>(draw.node) >= node_worlds.size()) continue;
       const glm::dmat4 world = node_worlds[static_cast<size_t>(draw.node)] * draw.offset;
       if (world == draw.world) continue;
       draw.world = world;

@@ -74,9 +74,22 @@ bool select_animation(const Rig* rig, const std::string& spec, int& selection, s
   return false;
 }
 
+void skin_matrices(const Rig::Skin& skin, const std::vector<glm::dmat4>& node_worlds, std::vector<glm::dmat4>& out) {
+  out.resize(skin.joints.size());
+  for (size_t j = 0; j < skin.joints.size(); ++j)
+    out[j] = node_worlds[static_cast<size_t>(skin.joints[j])] * skin.inverse_bind[j];
+}
+
 void pose_instances(Scene& scene, const Pose& pose) {
-  for (Instance& instance : scene.instances)
-    if (instance.node >= 0) instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
+  for (Instance& instance : scene.instances) {
+    if (instance.skin >= 0) {
+      const Rig::Skin& skin = pose.rig().skins[static_cast<size_t>(instance.skin)];
+      skin_matrices(skin, pose.worlds(), instance.skin_matrices);
+      instance.world = pose.worlds()[static_cast<size_t>(skin.joints[0])];
+    } else if (instance.node >= 0) {
+      instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
+    }
+  }
 }
 
 void pose_meshes(Scene& scene, const Pose& pose) {
@@ -96,8 +109,7 @@ void pose_meshes(Scene& scene, const Pose& pose) {
 void include_animation_in_bounds(Scene& scene) {
   if (!scene.rig || scene.rig->animations.empty()) return;
   constexpr int kSamples = 32;
-  std::vector<glm::dmat4> rest;
-  for (const Instance& instance : scene.instances) rest.push_back(instance.world);
+  const std::vector<Instance> rest = scene.instances;
   Bounds all = scene.bounds;
   Pose pose(scene.rig);
   for (int selection = Rig::kAllAnimations; selection < static_cast<int>(scene.rig->animations.size()); ++selection) {
@@ -110,7 +122,7 @@ void include_animation_in_bounds(Scene& scene) {
       all.max = glm::max(all.max, scene.bounds.max);
     }
   }
-  for (size_t i = 0; i < rest.size(); ++i) scene.instances[i].world = rest[i];
+  scene.instances = rest;
   scene.bounds = all;
 }
 

@@ -7,6 +7,7 @@
 #include "gltf_lights.h"
 #include "gltf_materials.h"
 #include "gltf_morph.h"
+#include "gltf_skin.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -86,8 +87,8 @@ class Builder {
     // glTF allows a file without scenes ("nothing to render at load time", 3.5.1): the kiosk has
     // nothing it could rightly choose to show, so it says so rather than guessing at root nodes.
     if (!shown || shown->nodes.empty()) fail("scenes: the file has no scene with nodes to show");
-    // Only a file that animates keeps its node tree: a static scene needs its instances alone.
-    if (!model_.animations.empty()) {
+    // Only a file that animates or skins keeps its node tree: a static scene needs its instances alone.
+    if (!model_.animations.empty() || !model_.skins.empty()) {
       rig_ = std::make_shared<Rig>();
       node_of_.assign(model_.nodes.size(), -1);
     }
@@ -95,6 +96,8 @@ class Builder {
     if (rig_) {
       rig_->animations = read_animations(document_, node_of_, *rig_);
       settle_morphs(scene_, *rig_);
+      rig_->skins = read_skins(document_, node_of_);
+      place_skinned();
       scene_.rig = std::move(rig_);
     }
     if (scene_.instances.empty()) fail("meshes: the scene contains no triangles to render");
@@ -165,8 +168,15 @@ class Builder {
       if (rig_) node_of_[at] = rig_node;
       if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
       if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) add_light(*light);
+      if (node.skin >= 0 && static_cast<size_t>(node.skin) >= model_.skins.size())
+        fail(where + ".skin: " + std::to_string(node.skin) + " out of range (there are " + std::to_string(model_.skins.size()) +
+             ")");
+      const int skin = node.mesh >= 0 ? node.skin : -1;
       if (node.mesh >= 0)
-        for (int mesh : meshes_of(node.mesh, weights)) scene_.instances.push_back({mesh, world, rig_node, glm::dmat4(1.0)});
+        for (int mesh : meshes_of(node.mesh, weights, skin)) {
+          const bool skinned = !scene_.meshes[static_cast<size_t>(mesh)].joints.empty();
+          scene_.instances.push_back({mesh, world, rig_node, glm::dmat4(1.0), skinned ? skin : -1, {}});
+        }
       stack.push_back({index, world, 0, rig_node});
     };
     for (size_t r = 0; r < roots.size(); ++r) {
@@ -252,9 +262,10 @@ class Builder {
 
   // The Scene meshes of glTF mesh `index`, one per triangle primitive, converted once and shared by
   // instances; a mesh with morph targets, shaped at `weights`, is converted for each node that shows
-  // it, as the nodes may give it different weights.
-  std::vector<int> meshes_of(int index, const std::vector<float>& weights) {
-    if (weights.empty())
+  // it, as the nodes may give it different weights, and so is one that `skin` (>= 0) deforms.
+  std::vector<int> meshes_of(int index, const std::vector<float>& weights, int skin) {
+    const bool shared = weights.empty() && skin < 0;
+    if (shared)
       if (auto found = converted_.find(index); found != converted_.end()) return found->second;
     std::vector<int> ids;
     const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(index)];
@@ -267,13 +278,34 @@ class Builder {
         continue;
       }
       const nlohmann::json& source = document_.root()["meshes"][static_cast<size_t>(index)]["primitives"][p];
-      Mesh converted = convert(primitive, source, where, weights);
+      Mesh converted = convert(primitive, source, where, weights, skin);
       if (converted.indices.empty()) continue;
       scene_.meshes.push_back(std::move(converted));
       ids.push_back(static_cast<int>(scene_.meshes.size()) - 1);
     }
-    if (weights.empty()) converted_[index] = ids;
+    if (shared) converted_[index] = ids;
     return ids;
+  }
+
+  // Each skinned instance at the rest pose: its skin's matrices, and its draws anchored at the
+  // skin's first joint. A skin a shown mesh uses must have every joint in the shown scene.
+  void place_skinned() {
+    std::vector<glm::dmat4> worlds(rig_->nodes.size());
+    for (size_t i = 0; i < rig_->nodes.size(); ++i) {
+      const Rig::Node& node = rig_->nodes[i];
+      worlds[i] = node.parent < 0 ? node.local() : worlds[static_cast<size_t>(node.parent)] * node.local();
+    }
+    for (Instance& instance : scene_.instances) {
+      if (instance.skin < 0) continue;
+      const Rig::Skin& skin = rig_->skins[static_cast<size_t>(instance.skin)];
+      for (size_t j = 0; j < skin.joints.size(); ++j)
+        if (skin.joints[j] < 0)
+          fail("skins[" + std::to_string(instance.skin) + "].joints[" + std::to_string(j) + "]: node " +
+               std::to_string(model_.skins[static_cast<size_t>(instance.skin)].joints[j]) +
+               " is not in the shown scene; expected the joints of a shown skin there");
+      skin_matrices(skin, worlds, instance.skin_matrices);
+      instance.world = worlds[static_cast<size_t>(skin.joints[0])];
+    }
   }
 
   // Attribute `name` of a primitive, from its Draco mesh when the extension compresses it, else
@@ -353,8 +385,30 @@ class Builder {
     return morph;
   }
 
+  // JOINTS_0 and WEIGHTS_0 of a primitive `skin` deforms (none: it is drawn unskinned, with a
+  // warning); a second set of four influences is left out with a warning.
+  void read_skinning(const tinygltf::Primitive& primitive, const DracoPrimitive* decoded, int skin, size_t vertex_count,
+                     const std::string& where, std::vector<glm::vec<4, uint16_t>>& joints, std::vector<glm::vec4>& weights) {
+    const auto joints_at = primitive.attributes.find("JOINTS_0"), weights_at = primitive.attributes.find("WEIGHTS_0");
+    if (joints_at == primitive.attributes.end() || weights_at == primitive.attributes.end()) {
+      report_.warnings.push_back(where + ".attributes: its node has a skin but it lacks JOINTS_0 or WEIGHTS_0; drawn unskinned");
+      return;
+    }
+    if (primitive.attributes.count("JOINTS_1"))
+      report_.warnings.push_back(where +
+                                 ".attributes: JOINTS_1 and WEIGHTS_1 are not read; each vertex follows its first "
+                                 "four joints");
+    const auto indices = attribute<4>(decoded, "JOINTS_0", joints_at->second, where + ".attributes.JOINTS_0",
+                                      {{kUnsignedByte, false}, {kUnsignedShort, false}});
+    weights = attribute<4>(decoded, "WEIGHTS_0", weights_at->second, where + ".attributes.WEIGHTS_0",
+                           {{kFloat, false}, {kUnsignedByte, true}, {kUnsignedShort, true}});
+    if (indices.size() != vertex_count || weights.size() != vertex_count)
+      fail(where + ".attributes: JOINTS_0 and WEIGHTS_0 must have as many elements as POSITION");
+    check_skin_attributes(indices, weights, model_.skins[static_cast<size_t>(skin)].joints.size(), where, joints);
+  }
+
   Mesh convert(const tinygltf::Primitive& primitive, const nlohmann::json& source, const std::string& where,
-               const std::vector<float>& weights) {
+               const std::vector<float>& weights, int skin) {
     std::optional<DracoPrimitive> draco;
     if (const auto extensions = source.find("extensions"); extensions != source.end() && extensions->is_object())
       if (const auto compressed = extensions->find("KHR_draco_mesh_compression"); compressed != extensions->end()) {
@@ -389,6 +443,9 @@ class Builder {
       if (normals.size() != vertex_count) fail(where + ".attributes.NORMAL: count differs from POSITION's");
     }
     Mesh::Morph morph = shape(primitive, decoded, weights, positions, normals, where);
+    std::vector<glm::vec<4, uint16_t>> joints;
+    std::vector<glm::vec4> joint_weights;
+    if (skin >= 0) read_skinning(primitive, decoded, skin, vertex_count, where, joints, joint_weights);
     // Only an animated file can change the weights (settle_morphs drops what no channel moves).
     if (!rig_) morph = Mesh::Morph();
     const int material_id = materials_.material(primitive.material, where);
@@ -432,6 +489,11 @@ class Builder {
     if (normals.empty()) {
       // The spec: without NORMAL, flat normals. Each triangle gets its own three vertices.
       mesh.vertices.reserve(indices.size());
+      for (uint32_t from : indices)
+        if (!joints.empty()) {
+          mesh.joints.push_back(joints[from]);
+          mesh.joint_weights.push_back(joint_weights[from]);
+        }
       Mesh::Morph per_corner = morph;
       for (size_t t = 0; t < morph.target_count(); ++t) {
         per_corner.positions[t].clear();
@@ -463,6 +525,8 @@ class Builder {
       mesh.indices = std::move(indices);
       mesh.uv1 = std::move(second_uvs);
       mesh.morph = std::move(morph);
+      mesh.joints = std::move(joints);
+      mesh.joint_weights = std::move(joint_weights);
       // The file's tangents, normalised; w must be the sign of a handedness (glTF: +1 or -1).
       for (size_t i = 0; i < tangents.size(); ++i) {
         glm::vec4& t = tangents[i];

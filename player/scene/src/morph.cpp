@@ -35,4 +35,17 @@ void morph_vertices(const Mesh& mesh, const float* weights, std::vector<Vertex>&
   }
 }
 
+void skin_vertices(const Mesh& mesh, const std::vector<glm::dmat4>& matrices, std::vector<Vertex>& out) {
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    glm::dmat4 blend(0.0);
+    for (int k = 0; k < 4; ++k)
+      if (mesh.joint_weights[i][k] != 0.0f) blend += double(mesh.joint_weights[i][k]) * matrices[mesh.joints[i][k]];
+    out[i] = mesh.vertices[i];
+    out[i].position = glm::vec3(blend * glm::dvec4(mesh.vertices[i].position, 1.0));
+    const glm::dvec3 normal = glm::dmat3(blend) * glm::dvec3(mesh.vertices[i].normal);
+    const double length = glm::length(normal);
+    out[i].normal = length > 1e-30 ? glm::vec3(normal / length) : glm::vec3(0.0f);
+  }
+}
+
 }  // namespace scene

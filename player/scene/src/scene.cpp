@@ -12,17 +12,45 @@ size_t Scene::triangle_count() const {
   return count;
 }
 
+namespace {
+
+// Widens `bounds` by the box [min, max] moved by `transform`.
+void add_box(Bounds& bounds, const glm::dmat4& transform, const glm::vec3& min, const glm::vec3& max) {
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 local((corner & 1) ? max.x : min.x, (corner & 2) ? max.y : min.y, (corner & 4) ? max.z : min.z);
+    const glm::dvec3 world(transform * glm::dvec4(local, 1.0));
+    bounds.min = glm::min(bounds.min, world);
+    bounds.max = glm::max(bounds.max, world);
+  }
+}
+
+// A skinned vertex is a weighted mean of its joints' transforms of it, so it lies within the
+// boxes of those transforms; each joint's box holds only the vertices it moves.
+void add_skinned(Bounds& bounds, const Mesh& mesh, const Instance& instance) {
+  const size_t joints = instance.skin_matrices.size();
+  std::vector<glm::vec3> low(joints, glm::vec3(std::numeric_limits<float>::max())),
+      high(joints, glm::vec3(std::numeric_limits<float>::lowest()));
+  for (size_t i = 0; i < mesh.vertices.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const size_t joint = mesh.joints[i][k];
+      if (mesh.joint_weights[i][k] <= 0.0f || joint >= joints) continue;
+      low[joint] = glm::min(low[joint], mesh.vertices[i].position);
+      high[joint] = glm::max(high[joint], mesh.vertices[i].position);
+    }
+  for (size_t joint = 0; joint < joints; ++joint)
+    if (low[joint].x <= high[joint].x) add_box(bounds, instance.skin_matrices[joint] * instance.offset, low[joint], high[joint]);
+}
+
+}  // namespace
+
 void update_bounds(Scene& scene) {
   Bounds bounds{glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
   for (const Instance& instance : scene.instances) {
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::dvec3 local((corner & 1) ? mesh.max.x : mesh.min.x, (corner & 2) ? mesh.max.y : mesh.min.y,
-                             (corner & 4) ? mesh.max.z : mesh.min.z);
-      const glm::dvec3 world(instance.world * glm::dvec4(local, 1.0));
-      bounds.min = glm::min(bounds.min, world);
-      bounds.max = glm::max(bounds.max, world);
-    }
+    if (instance.skin >= 0 && !mesh.joints.empty())
+      add_skinned(bounds, mesh, instance);
+    else
+      add_box(bounds, instance.world, mesh.min, mesh.max);
   }
   if (scene.instances.empty()) bounds = Bounds{};
   scene.bounds = bounds;

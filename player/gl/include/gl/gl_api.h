@@ -35,6 +35,7 @@ namespace gl {
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                        \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                        \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                                \
+  X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)                              \
   X(PFNGLGENTEXTURESPROC, GenTextures) X(PFNGLDELETETEXTURESPROC, DeleteTextures)     \
   X(PFNGLBINDTEXTUREPROC, BindTexture) X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)         \
   X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D) X(PFNGLTEXPARAMETERIPROC, TexParameteri)   \

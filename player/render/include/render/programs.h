@@ -18,6 +18,7 @@ struct RasterProgram {
   const gl::Program* program = nullptr;
   GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1, lit = -1;
   GLint material = -1, emissive = -1, frame_handedness = -1;
+  GLint joint_base = -1;  // SKINNED: the draw's first row of the joint matrices texture
 };
 
 // What a material asks of the G-buffer program (gbuffer.frag's variants), as bits.
@@ -33,7 +34,9 @@ constexpr unsigned metallic_roughness_uv1 = 1u << 6;
 constexpr unsigned normal_uv1 = 1u << 7;
 constexpr unsigned occlusion_uv1 = 1u << 8;
 constexpr unsigned emissive_uv1 = 1u << 9;
-constexpr unsigned count = 1u << 10;
+// Not a material's: a skinned draw's vertices are moved by its joints (SKINNED).
+constexpr unsigned skinned = 1u << 10;
+constexpr unsigned count = 1u << 11;
 }  // namespace features
 
 // The feature bits of `material`; `untextured_variant` off: untextured materials fetch a white texel.
@@ -47,7 +50,8 @@ enum TextureUnit {
   unit_emissive,
   unit_specular,
   unit_brdf_lut,
-  unit_linear_depth
+  unit_linear_depth,
+  unit_joints
 };
 
 class Programs {
@@ -96,7 +100,14 @@ class Programs {
     return program.program ? &program : nullptr;
   }
   bool prepare_forward(unsigned feature_bits, bool srgb, std::string& error);
-  RasterProgram depth_only, depth_masked;                // alpha-tested materials (scene::Material::alpha_tested)
+  RasterProgram depth_only, depth_masked;  // alpha-tested materials (scene::Material::alpha_tested)
+  // The prepass programs of skinned draws (for light field modules: `modules`), compiled by
+  // prepare_skinned_depth; null before.
+  const RasterProgram* skinned_depth(bool masked, bool modules) const {
+    const RasterProgram& program = skinned_depth_[modules ? 1 : 0][masked ? 1 : 0];
+    return program.program ? &program : nullptr;
+  }
+  bool prepare_skinned_depth(bool modules, std::string& error);
   RasterProgram module_depth_only, module_depth_masked;  // see build_module_programs
   // Light field modules cannot write the material target (a GPU with four draw buffers).
   bool modules_without_material = false;
@@ -120,6 +131,7 @@ class Programs {
   PerVariant<const gl::Program*> ssao_{};
   std::array<std::array<const gl::Program*, 2>, std::size(kPictureNames)> present_{};
   std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{}, forward_{};
+  std::array<std::array<RasterProgram, 2>, 2> skinned_depth_{};
   PerVariant<std::string> ssao_defines_{};
   PerVariant<GLint> ssao_inverse_far_{};
 };

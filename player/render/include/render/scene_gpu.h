@@ -28,7 +28,8 @@ class SceneGpu {
   struct Mesh {
     gl::VertexArray vao;
     gl::Buffer vertices, indices;
-    gl::Buffer tangents, uv1;  // only where the scene's mesh has them
+    gl::Buffer tangents, uv1;          // only where the scene's mesh has them
+    gl::Buffer joints, joint_weights;  // a skinned mesh's
     GLsizei index_count = 0;
   };
   struct Draw {
@@ -38,6 +39,10 @@ class SceneGpu {
     glm::dvec3 box_centre;  // of the mesh's box, in the mesh: blended draws are sorted by it
     int node = -1;          // the rig's node that moves it (scene::Instance), -1: nothing does
     glm::dmat4 offset{1.0};
+    // A skinned draw's skin (scene::Instance::skin, -1: none) and its first joint's index in
+    // joint_matrices(); `world` is then its anchor, the skin's first joint.
+    int skin = -1;
+    int joint_base = 0;
   };
 
   // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().
@@ -64,6 +69,9 @@ class SceneGpu {
   // nothing.
   const std::shared_ptr<const scene::Rig>& rig() const { return rig_; }
   void pose(const scene::Pose& pose);
+  // The skinned draws' joint matrices (RGBA32F, three texels per joint: the rows of the affine matrix
+  // from the draw's mesh to its anchor; 64 joints to a row), empty without skins.
+  const gl::Texture& joint_matrices() const { return joint_matrices_; }
   // Counts the poses that moved a draw: the AO of an earlier count is not this scene's any more.
   std::uint64_t pose_version() const { return pose_version_; }
   // The draws of blended materials (alphaMode BLEND), drawn after the opaque image by the forward
@@ -117,6 +125,13 @@ class SceneGpu {
     std::vector<float> shown;
   };
   std::vector<Morphed> morphed_;
+  // Writes `draw`'s joint matrices (each joint's world times inverse bind, of `joint_world`) into
+  // the staging rows, relative to its anchor; true when a row changed.
+  template <typename JointWorld>
+  bool write_joints(const Draw& draw, size_t joints, const JointWorld& joint_world);
+  void upload_joints();
+  gl::Texture joint_matrices_;
+  std::vector<glm::vec4> joint_rows_;  // the texture's texels, as the last pose left them
   std::vector<scene::Vertex> shaped_;  // as long as the longest morphed mesh
 };
 

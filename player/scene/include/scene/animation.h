@@ -1,7 +1,7 @@
 #pragma once
 // glTF animation of node transforms: the node tree of the shown scene, the file's animations
 // (translation, rotation, scale and morph target weights channels, STEP, LINEAR and CUBICSPLINE
-// samplers), and the pose of every node at a time. Skins are not animated (the loader warns).
+// samplers), the skins that joints of the tree move, and the pose of every node at a time.
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -53,6 +53,12 @@ struct Rig {
   };
   std::vector<Node> nodes;
   std::vector<Animation> animations;
+  // glTF's skins: the nodes that are its joints, and each joint's inverse bind matrix.
+  struct Skin {
+    std::vector<int> joints;
+    std::vector<glm::dmat4> inverse_bind;
+  };
+  std::vector<Skin> skins;
   // `selection`: an animation's index, kAllAnimations or kNoAnimation (the rest pose). The loop of
   // the selection: its longest animation's duration.
   static constexpr int kAllAnimations = -1;
@@ -104,6 +110,9 @@ void pose_instances(Scene& scene, const Pose& pose);
 // Shapes the meshes with morph targets at the weights `pose` gives the nodes that show them (the
 // loader gives each such node a mesh of its own).
 void pose_meshes(Scene& scene, const Pose& pose);
+// Each joint's world transform (of `node_worlds`) times its inverse bind matrix, into `out`
+// (resized to the skin's joints).
+void skin_matrices(const Rig::Skin& skin, const std::vector<glm::dmat4>& node_worlds, std::vector<glm::dmat4>& out);
 // Widens scene.bounds to hold every pose of its animations (each alone and all together, sampled
 // 32 times over their loop), so a camera framing the bounds keeps every moving part in view.
 void include_animation_in_bounds(Scene& scene);

@@ -42,12 +42,21 @@ struct Mesh {
     size_t target_count() const { return weights.size(); }
   };
   Morph morph;
+  // Skinning (glTF 3.7.3): per vertex four joints (indices into its skin's joint list) and their
+  // weights, which sum to 1; empty for a mesh no skin deforms.
+  std::vector<glm::vec<4, uint16_t>> joints;
+  std::vector<glm::vec4> joint_weights;
 };
 
 // `mesh`'s vertices at `weights` (target_count() of them) into `out` (as long as mesh.vertices):
 // positions moved by the weighted displacements from the shape the mesh holds, normals the
 // normalised weighted sum of the file's (or each triangle's own for flat normals). Allocates nothing.
 void morph_vertices(const Mesh& mesh, const float* weights, std::vector<Vertex>& out);
+
+// `mesh`'s vertices moved by its joints: `matrices` (one per joint of its skin, each already times
+// the instance's offset) weighted per vertex; normals by the same blend, normalised. The CPU's
+// account of what the vertex stage does. `out` as long as mesh.vertices; allocates nothing.
+void skin_vertices(const Mesh& mesh, const std::vector<glm::dmat4>& matrices, std::vector<Vertex>& out);
 
 enum class Filter { nearest, linear };
 
@@ -99,6 +108,12 @@ struct Instance {
   // -1 where nothing moves it; offset: what the loader folded in after (recenter_meshes).
   int node = -1;
   glm::dmat4 offset{1.0};
+  // A skinned instance: its skin (Rig::skins) and, per joint, the joint's world transform times its
+  // inverse bind matrix at the pose the instance is placed at. A vertex v of the mesh goes to
+  // sum(weight * skin_matrices[joint] * offset * v); `world` is then only where its draws are
+  // anchored (the first joint), as glTF ignores a skinned mesh's own node transform.
+  int skin = -1;
+  std::vector<glm::dmat4> skin_matrices{};
 };
 
 // A light of the file (KHR_lights_punctual), placed by its node: a directional light shines along
@@ -161,7 +176,8 @@ struct Scene {
   size_t triangle_count() const;
 };
 
-// Recomputes `bounds` from the instances (the transformed corners of each mesh's box).
+// Recomputes `bounds` from the instances (the transformed corners of each mesh's box; for a skinned
+// one, of the box of the vertices each joint moves, by that joint's matrix).
 void update_bounds(Scene& scene);
 
 // Moves each mesh's vertices so their box is centred on the origin and folds the offset into the

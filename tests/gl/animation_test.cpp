@@ -244,6 +244,57 @@ TEST_P(Animated, APoseBendsASkinnedMeshAsTheCpuSkinsIt) {
   EXPECT_LE(worst, 2) << "the vertex stage's skinning differs from the CPU's";
 }
 
+// A point light carried by an animated node from above x = -2 to above x = +2 lights the floor
+// under it: the pose moves the light the frame uses.
+TEST_P(Animated, APoseMovesTheLightsOfMovingNodes) {
+  scene::Scene built;
+  built.materials = {scene::Material{}};
+  built.materials[0].metallic = 0.0f;
+  built.materials[0].base_color = glm::vec4(0.1f, 0.1f, 0.1f, 1.0f);  // far from white, where the light shows
+  scene::add_instance(built, scene::make_quad({-4, 0, 2}, {8, 0, 0}, {0, 0, -4}, 0));
+  auto rig = std::make_shared<scene::Rig>();
+  rig->nodes.resize(1);
+  rig->nodes[0].translation = {-2, 0.5, 0};
+  scene::AnimationChannel slide;
+  slide.node = 0;
+  slide.property = scene::AnimatedProperty::translation;
+  slide.times = {0.0f, 1.0f};
+  slide.values = {{-2, 0.5, 0, 0}, {2, 0.5, 0, 0}};
+  rig->animations.push_back({"slide", {slide}, 1.0});
+  scene::Light light;
+  light.type = scene::Light::Type::point;
+  light.color = glm::vec3(1.0f);
+  light.position = {-2, 0.5, 0};
+  light.rig_node = 0;
+  built.lights = {light};
+  built.rig = rig;
+  scene::update_bounds(built);
+  render::FrameSettings settings;
+  settings.width = settings.height = 96;
+  settings.check_errors = true;
+  scene::Framing framing;
+  framing.azimuth_deg = 0.0;
+  framing.elevation_deg = 60.0;
+  Harness h;
+  ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, framing));
+  auto brightness = [&](glm::dvec3 world) {
+    const std::vector<uint8_t> color = h.renderer.read_color();
+    const glm::ivec2 p = h.pixel_of(world);
+    return int(color[static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4)]);
+  };
+  const glm::dvec3 left(-2, 0, 0), right(2, 0, 0);
+  h.renderer.render(h.camera);
+  const int left_lit = brightness(left), right_dark = brightness(right);
+  EXPECT_GT(left_lit, right_dark + 40);
+  scene::Pose pose(rig);
+  pose.at(scene::Rig::kAllAnimations, 1.0 - 1e-9);
+  h.renderer.pose(pose);
+  h.renderer.render(h.camera);
+  EXPECT_EQ(h.renderer.gl_error(), "");
+  EXPECT_GT(brightness(right), brightness(left) + 40) << "the light went with its node";
+  EXPECT_NEAR(brightness(right), left_lit, 3) << "the same light over the same floor";
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, Animated, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace

@@ -207,6 +207,28 @@ TEST_F(GltfAnimation, ChannelsMoveTheRigsNodesAndTheRenderPoseFollows) {
   EXPECT_FALSE(load_ok(write(triangle())).rig);
 }
 
+TEST_F(GltfAnimation, CamerasAndLightsOnMovingNodesMoveWithThem) {
+  json doc = animated("translation", "LINEAR", {0, 2}, {0, 0, 0, 0, 4, 0}, 3);
+  doc["nodes"][0]["children"] = {1, 2};
+  doc["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}}}}}}};
+  scene::Scene loaded = load_ok(write(doc));
+  ASSERT_EQ(loaded.cameras.size(), 1u);
+  ASSERT_EQ(loaded.lights.size(), 1u);
+  EXPECT_EQ(loaded.cameras[0].rig_node, 2);
+  EXPECT_EQ(loaded.lights[0].rig_node, 2);
+  scene::Pose pose(loaded.rig);
+  pose.at(scene::Rig::kAllAnimations, 1.0);  // the parent half way up: y = 2
+  scene::pose_instances(loaded, pose);
+  EXPECT_NEAR(glm::distance(glm::dvec3(loaded.cameras[0].world[3]), glm::dvec3(0, 2, 5)), 0.0, 1e-9);
+  EXPECT_NEAR(glm::distance(loaded.lights[0].position, glm::dvec3(0, 2, 5)), 0.0, 1e-9);
+  EXPECT_TRUE(loaded.cameras[0].unplaced.empty());
+  // A static file's camera and light are carried by nothing.
+  EXPECT_EQ(load_ok(write(triangle())).cameras.size(), 0u);
+}
+
 TEST_F(GltfAnimation, BadSamplersAreRefusedByFieldAndWeightsWarned) {
   auto refused = [&](const json& doc, const std::string& expected) {
     const std::string error = error_of(write(doc));

@@ -135,7 +135,8 @@ scene::Camera camera_for(const playback::Camera& camera, const scene::Bounds& bo
     else if (!cameras[index].perspective)
       *note = name + " is orthographic, which the player does not draw; framed instead";
     else
-      *note = name + " (node " + std::to_string(cameras[index].node) + "): " + cameras[index].unplaced + "; framed instead";
+      *note = name + " (node " + std::to_string(cameras[index].node) + "): " + std::string(cameras[index].unplaced) +
+              "; framed instead";
   }
   return scene::frame(bounds, framing_of(camera), width, height);
 }

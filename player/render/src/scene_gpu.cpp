@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 namespace render {
 namespace {
@@ -257,6 +258,9 @@ void SceneGpu::finish() {
     upload_joints();
   }
   rig_ = scene.rig;
+  placed_lights_.clear();
+  for (const scene::Light& light : scene.lights)
+    if (light.rig_node >= 0) placed_lights_ = scene.lights;
   for (const scene::Instance& instance : scene.instances) {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     if (instance.node < 0 || mesh.morph.target_count() == 0) continue;
@@ -325,6 +329,16 @@ void SceneGpu::pose(const scene::Pose& pose) {
     }
   if (bent) upload_joints();
   moved = moved || bent;
+  if (!placed_lights_.empty()) {
+    const shared_layout::LightParams before = pack_light_params(placed_lights_);
+    scene::pose_lights_and_cameras(placed_lights_, no_cameras_, pose);
+    const shared_layout::LightParams after = pack_light_params(placed_lights_);
+    if (std::memcmp(&before, &after, sizeof after) != 0) {
+      gl::api.BindBuffer(GL_UNIFORM_BUFFER, lights_.id());
+      gl::api.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof after, &after);
+      gl::api.BindBuffer(GL_UNIFORM_BUFFER, 0);  // lights do not change the AO: not a move
+    }
+  }
   for (Morphed& morphed : morphed_) {
     const std::vector<float>& weights = pose.weights()[static_cast<size_t>(morphed.node)];
     if (weights.size() != morphed.shown.size() || weights == morphed.shown) continue;

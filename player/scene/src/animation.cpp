@@ -90,6 +90,14 @@ void pose_instances(Scene& scene, const Pose& pose) {
       instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
     }
   }
+  pose_lights_and_cameras(scene.lights, scene.cameras, pose);
+}
+
+void pose_lights_and_cameras(std::vector<Light>& lights, std::vector<FileCamera>& cameras, const Pose& pose) {
+  for (Light& light : lights)
+    if (light.rig_node >= 0) place_light(light, pose.worlds()[static_cast<size_t>(light.rig_node)]);
+  for (FileCamera& camera : cameras)
+    if (camera.rig_node >= 0) place_camera(camera, pose.worlds()[static_cast<size_t>(camera.rig_node)]);
 }
 
 void pose_meshes(Scene& scene, const Pose& pose) {

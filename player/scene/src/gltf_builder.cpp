@@ -166,8 +166,14 @@ class Builder {
       const glm::dmat4 world = parent * local.local();
       const int rig_node = rig_ ? add_rig_node(std::move(local), rig_parent) : -1;
       if (rig_) node_of_[at] = rig_node;
-      if (node.camera >= 0) scene_.cameras.push_back(file_camera(node.camera, world, index));
-      if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) add_light(*light);
+      if (node.camera >= 0) {
+        scene_.cameras.push_back(file_camera(node.camera, world, index));
+        scene_.cameras.back().rig_node = rig_node;
+      }
+      if (auto light = lights_.place(document_.root().at("nodes").at(at), index, world)) {
+        light->rig_node = rig_node;
+        add_light(*light);
+      }
       if (node.skin >= 0 && static_cast<size_t>(node.skin) >= model_.skins.size())
         fail(where + ".skin: " + std::to_string(node.skin) + " out of range (there are " + std::to_string(model_.skins.size()) +
              ")");
@@ -223,17 +229,8 @@ class Builder {
            std::to_string(model_.cameras.size()) + ")");
     const tinygltf::Camera& source = model_.cameras[static_cast<size_t>(index)];
     FileCamera camera;
-    camera.world = world;
     camera.node = node;
-    {
-      const glm::dvec3 eye(world[3]), forward(world * glm::dvec4(0, 0, -1, 0)), up(world * glm::dvec4(0, 1, 0, 0));
-      const auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-      if (!finite(eye) || !finite(forward) || !finite(up))
-        camera.unplaced = "its node's transform is not finite";
-      else if (glm::length(forward) < 1e-12 || glm::length(up) < 1e-12 ||
-               glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) < 1e-6)
-        camera.unplaced = "its node's transform scales its view direction or its up to nothing";
-    }
+    place_camera(camera, world);
     if (source.type == "perspective") {
       const tinygltf::PerspectiveCamera& p = source.perspective;
       if (!std::isfinite(p.yfov) || p.yfov <= 0.0 || p.yfov >= 3.14159)

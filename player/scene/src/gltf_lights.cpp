@@ -99,19 +99,13 @@ std::optional<Light> LightReader::place(const nlohmann::json& node, int node_ind
   if (!defined) return std::nullopt;
   Light light = *defined;
   light.node = node_index;
-  light.position = glm::dvec3(world[3]);
-  const glm::dvec3 axis = glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
-  const double length = glm::length(axis);
-  const bool aimed = std::isfinite(length) && length > 1e-12;
   // A node scaled to nothing (how animations often hide a part) has no direction: its light is
   // left out, as a camera's node is, rather than the file refused.
-  if (!std::isfinite(light.position.x + light.position.y + light.position.z) || (!aimed && light.type != Light::Type::point)) {
+  if (!place_light(light, world)) {
     warnings_.push_back("nodes[" + std::to_string(node_index) +
                         "]: the transform leaves its light no direction or position; the light is left out");
     return std::nullopt;
   }
-  if (!aimed) return light;
-  light.direction = axis / length;
   return light;
 }
 

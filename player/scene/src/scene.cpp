@@ -56,6 +56,29 @@ void update_bounds(Scene& scene) {
   scene.bounds = bounds;
 }
 
+bool place_light(Light& light, const glm::dmat4& world) {
+  const glm::dvec3 position(world[3]);
+  const glm::dvec3 axis(world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+  const double length = glm::length(axis);
+  const bool aimed = std::isfinite(length) && length > 1e-12;
+  if (!std::isfinite(position.x + position.y + position.z) || (!aimed && light.type != Light::Type::point)) return false;
+  light.position = position;
+  if (aimed) light.direction = axis / length;
+  return true;
+}
+
+void place_camera(FileCamera& camera, const glm::dmat4& world) {
+  camera.world = world;
+  camera.unplaced = {};
+  const glm::dvec3 eye(world[3]), forward(world * glm::dvec4(0, 0, -1, 0)), up(world * glm::dvec4(0, 1, 0, 0));
+  const auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(eye) || !finite(forward) || !finite(up))
+    camera.unplaced = "its node's transform is not finite";
+  else if (glm::length(forward) < 1e-12 || glm::length(up) < 1e-12 ||
+           glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) < 1e-6)
+    camera.unplaced = "its node's transform scales its view direction or its up to nothing";
+}
+
 void recenter_meshes(Scene& scene) {
   std::vector<glm::dvec3> offsets;
   for (Mesh& mesh : scene.meshes) {

@@ -131,6 +131,8 @@ void SceneCache::pose(int item, double item_time) {
   if (!scene.pose) return;
   scene.pose->at(selection, item_time * animation_speeds_[i]);
   scene.gpu->pose(*scene.pose);
+  no_lights_.clear();
+  scene::pose_lights_and_cameras(no_lights_, scene.cameras, *scene.pose);
 }
 
 void SceneCache::reload_all() {

@@ -114,6 +114,8 @@ class SceneGpu {
   EnvironmentGpu environment_;
   gl::Buffer lights_;
   int light_count_ = 0;
+  std::vector<scene::Light> placed_lights_;  // as the last pose placed them (those nodes move)
+  std::vector<scene::FileCamera> no_cameras_;
   std::shared_ptr<const scene::Rig> rig_;
   std::uint64_t pose_version_ = 0;
   // A mesh the frames reshape (scene::Mesh::morph): its vertices, targets and rest weights as the

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace scene {
@@ -130,7 +131,12 @@ struct Light {
   double range = 0.0;              // beyond it the light falls to nothing (0: unbounded, inverse square only)
   double inner_cone = 0.0, outer_cone = 0.7853981633974483;  // spot: radians from the axis
   int node = -1;                                             // for messages
+  int rig_node = -1;                                         // in an animated scene: the rig's node that carries it (-1: none)
 };
+
+// Puts `light` where `world` (its node's world transform) places it; false, the light unchanged,
+// where that transform gives no finite position or (but for a point light) no direction.
+bool place_light(Light& light, const glm::dmat4& world);
 
 // The lights a scene keeps (the renderer's uniform block has room for these; more are left out
 // with a warning).
@@ -145,10 +151,15 @@ struct FileCamera {
   double znear = 0.01;
   double zfar = 0.0;  // 0: infinite (fitted to the scene when drawn)
   int node = -1;      // for messages
+  int rig_node = -1;  // in an animated scene: the rig's node that carries it (-1: none)
   // Non-empty when the node's transform places no usable view (a zero scale, a non-finite number,
   // a view direction along its up): why, for the note that says the scene is framed instead.
-  std::string unplaced;
+  std::string_view unplaced;
 };
+
+// Puts `camera` where `world` (its node's world transform) places it, or says in `unplaced` why
+// that transform places no usable view. Allocates nothing.
+void place_camera(FileCamera& camera, const glm::dmat4& world);
 
 struct Bounds {
   glm::dvec3 min{0.0}, max{0.0};

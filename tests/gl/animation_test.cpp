@@ -10,6 +10,34 @@ namespace {
 
 using test::Harness;
 
+constexpr int kSize = 96;
+
+render::FrameSettings small_frame() {
+  render::FrameSettings settings;
+  settings.width = settings.height = kSize;
+  settings.check_errors = true;
+  return settings;
+}
+
+scene::Framing from_the_front(double elevation_deg) {
+  scene::Framing framing;
+  framing.azimuth_deg = 0.0;
+  framing.elevation_deg = elevation_deg;
+  return framing;
+}
+
+// The pixel where `world` shows in the last frame: its red, and its red less its green (a red
+// surface's mark).
+glm::ivec2 rgb_at(const Harness& h, glm::dvec3 world) {
+  const std::vector<uint8_t> color = h.renderer.read_color();
+  const glm::ivec2 p = h.pixel_of(world);
+  const size_t i = static_cast<size_t>(((kSize - 1 - p.y) * kSize + p.x) * 4);
+  return {color[i], int(color[i]) - int(color[i + 1])};
+}
+int redness(const Harness& h, glm::dvec3 world) {
+  return rgb_at(h, world).y;
+}
+
 class Animated : public ::testing::TestWithParam<std::string> {};
 
 // A red box on a white floor, carried by its node from x = -1 to x = +1 over two seconds.
@@ -35,33 +63,23 @@ TEST_P(Animated, APoseMovesItsNodesDrawsAndTheAoIsComputedAnew) {
   pose.at(scene::Rig::kAllAnimations, 0.0);
   scene::pose_instances(built, pose);
   scene::update_bounds(built);
-  render::FrameSettings settings;
-  settings.width = settings.height = 96;
-  settings.check_errors = true;
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = 30.0;
+  const render::FrameSettings settings = small_frame();
+  const scene::Framing framing = from_the_front(30);
   Harness h;
   ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, framing));
   for (int frame = 0; frame < 40; ++frame) h.renderer.render(h.camera);
   ASSERT_TRUE(h.renderer.reused_ao()) << "a still camera over a still scene keeps its AO once averaged";
-  auto redness = [&](glm::dvec3 world) {
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const glm::ivec2 p = h.pixel_of(world);
-    const size_t i = static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4);
-    return int(color[i]) - int(color[i + 1]);
-  };
   const glm::dvec3 left_top(-1, 1, 0), right_top(0.5, 1, 0);
-  EXPECT_GT(redness(left_top), 60);
-  EXPECT_LT(redness(right_top), 20);
+  EXPECT_GT(redness(h, left_top), 60);
+  EXPECT_LT(redness(h, right_top), 20);
   pose.at(scene::Rig::kAllAnimations, 1.5);  // three quarters of the way: x = 0.5
   h.renderer.pose(pose);
 
   h.renderer.render(h.camera);
   EXPECT_FALSE(h.renderer.reused_ao()) << "the scene moved: its AO is computed again";
   EXPECT_EQ(h.renderer.gl_error(), "");
-  EXPECT_LT(redness(left_top), 20);
-  EXPECT_GT(redness(right_top), 60);
+  EXPECT_LT(redness(h, left_top), 20);
+  EXPECT_GT(redness(h, right_top), 60);
   // Posed again where it is: nothing moved, so nothing counts as motion.
   const std::uint64_t version = h.renderer.scene().pose_version();
   h.renderer.pose(pose);
@@ -107,18 +125,8 @@ TEST_P(Animated, APoseReshapesAMorphedMeshAsTheCpuShapesIt) {
     scene::update_bounds(built);
     return built;
   };
-  render::FrameSettings settings;
-  settings.width = settings.height = 96;
-  settings.check_errors = true;
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = 30.0;
-  auto redness = [&](const Harness& h, glm::dvec3 world) {
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const glm::ivec2 p = h.pixel_of(world);
-    const size_t i = static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4);
-    return int(color[i]) - int(color[i + 1]);
-  };
+  const render::FrameSettings settings = small_frame();
+  const scene::Framing framing = from_the_front(30);
   const glm::dvec3 above_the_top(0, 1.5, 0);
   std::vector<uint8_t> shaped_on_gpu;
   {
@@ -198,22 +206,12 @@ TEST_P(Animated, APoseBendsASkinnedMeshAsTheCpuSkinsIt) {
     built.bounds.max = glm::dvec3(3, 1, 3);
     return built;
   };
-  render::FrameSettings settings;
-  settings.width = settings.height = 96;
-  settings.check_errors = true;
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = 30.0;
+  const render::FrameSettings settings = small_frame();
+  const scene::Framing framing = from_the_front(30);
   scene::Pose pose(rig);
   pose.at(scene::Rig::kAllAnimations, 1.0 - 1e-9);
   std::vector<glm::dmat4> bent;
   scene::skin_matrices(rig->skins[0], pose.worlds(), bent);
-  auto redness = [&](const Harness& h, glm::dvec3 world) {
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const glm::ivec2 p = h.pixel_of(world);
-    const size_t i = static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4);
-    return int(color[i]) - int(color[i + 1]);
-  };
   // Where the tilted top's centre goes: the joint at y = 0.5, the top's centre half a unit above
   // it, turned 50 degrees towards -x.
   const glm::dvec3 tilted_top(-0.5 * std::sin(glm::radians(50.0)) * 0.75, 0.5 + 0.5 * std::cos(glm::radians(50.0)) * 0.75, 0);
@@ -269,19 +267,11 @@ TEST_P(Animated, APoseMovesTheLightsOfMovingNodes) {
   built.lights = {light};
   built.rig = rig;
   scene::update_bounds(built);
-  render::FrameSettings settings;
-  settings.width = settings.height = 96;
-  settings.check_errors = true;
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = 60.0;
+  const render::FrameSettings settings = small_frame();
+  const scene::Framing framing = from_the_front(60);
   Harness h;
   ASSERT_TRUE(h.start(GetParam(), std::move(built), settings, framing));
-  auto brightness = [&](glm::dvec3 world) {
-    const std::vector<uint8_t> color = h.renderer.read_color();
-    const glm::ivec2 p = h.pixel_of(world);
-    return int(color[static_cast<size_t>(((settings.height - 1 - p.y) * settings.width + p.x) * 4)]);
-  };
+  auto brightness = [&](glm::dvec3 world) { return rgb_at(h, world).x; };
   const glm::dvec3 left(-2, 0, 0), right(2, 0, 0);
   h.renderer.render(h.camera);
   const int left_lit = brightness(left), right_dark = brightness(right);

@@ -50,6 +50,9 @@ function(player_vm_test)
     LABELS "vm;${VM_LABELS}"
     FIXTURES_REQUIRED vm_kernel
     RESOURCE_LOCK vm
+    # Started first: the guests run one after another for minutes, and begun last they would leave
+    # the other core idle at the end of the run.
+    COST 1000
     SKIP_RETURN_CODE 77
     TIMEOUT ${ctest_timeout})
   if(VM_ENVIRONMENT)

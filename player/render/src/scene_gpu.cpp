@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 
 namespace render {
 namespace {
@@ -244,7 +243,8 @@ void SceneGpu::finish() {
     Draw& draw = (blended ? blended_ : draws_).back();
     // Whole rows of three texels per joint; the draw's joints start where the last draw's end.
     joint_rows_.resize(joint_rows_.size() + instance.skin_matrices.size() * 3);
-    write_joints(draw, instance.skin_matrices.size(), [&](size_t j) { return instance.skin_matrices[j]; });
+    write_joints(draw, instance.skin_matrices);
+    pose_joints_.reserve(std::max(pose_joints_.capacity(), instance.skin_matrices.size()));
   }
   if (!joint_rows_.empty()) {
     const size_t joints = joint_rows_.size() / 3;
@@ -258,9 +258,9 @@ void SceneGpu::finish() {
     upload_joints();
   }
   rig_ = scene.rig;
-  placed_lights_.clear();
-  for (const scene::Light& light : scene.lights)
-    if (light.rig_node >= 0) placed_lights_ = scene.lights;
+  const bool lights_move =
+      std::any_of(scene.lights.begin(), scene.lights.end(), [](const scene::Light& light) { return light.rig_node >= 0; });
+  placed_lights_ = lights_move ? scene.lights : std::vector<scene::Light>();
   for (const scene::Instance& instance : scene.instances) {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     if (instance.node < 0 || mesh.morph.target_count() == 0) continue;
@@ -288,13 +288,12 @@ void SceneGpu::finish() {
   source_.reset();
 }
 
-template <typename JointWorld>
-bool SceneGpu::write_joints(const Draw& draw, size_t joints, const JointWorld& joint_world) {
+bool SceneGpu::write_joints(const Draw& draw, const std::vector<glm::dmat4>& skin_matrices) {
   // Relative to the anchor, so the texture holds small numbers even far from the origin.
   const glm::dmat4 from_anchor = glm::inverse(draw.world);
   bool changed = false;
-  for (size_t j = 0; j < joints; ++j) {
-    const glm::mat4 m(from_anchor * joint_world(j) * draw.offset);
+  for (size_t j = 0; j < skin_matrices.size(); ++j) {
+    const glm::mat4 m(from_anchor * skin_matrices[j] * draw.offset);
     glm::vec4* rows = &joint_rows_[(static_cast<size_t>(draw.joint_base) + j) * 3];
     for (int r = 0; r < 3; ++r) {
       const glm::vec4 row(m[0][r], m[1][r], m[2][r], m[3][r]);
@@ -323,21 +322,16 @@ void SceneGpu::pose(const scene::Pose& pose) {
       const glm::dmat4& anchor = node_worlds[static_cast<size_t>(skin.joints[0])];
       moved = moved || anchor != draw.world;
       draw.world = anchor;
-      bent = write_joints(draw, skin.joints.size(),
-                          [&](size_t j) { return node_worlds[static_cast<size_t>(skin.joints[j])] * skin.inverse_bind[j]; }) ||
-             bent;
+      scene::skin_matrices(skin, node_worlds, pose_joints_);  // within the capacity finish() gave it
+      bent = write_joints(draw, pose_joints_) || bent;
     }
   if (bent) upload_joints();
   moved = moved || bent;
-  if (!placed_lights_.empty()) {
-    const shared_layout::LightParams before = pack_light_params(placed_lights_);
-    scene::pose_lights_and_cameras(placed_lights_, no_cameras_, pose);
-    const shared_layout::LightParams after = pack_light_params(placed_lights_);
-    if (std::memcmp(&before, &after, sizeof after) != 0) {
-      gl::api.BindBuffer(GL_UNIFORM_BUFFER, lights_.id());
-      gl::api.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof after, &after);
-      gl::api.BindBuffer(GL_UNIFORM_BUFFER, 0);  // lights do not change the AO: not a move
-    }
+  if (scene::pose_lights(placed_lights_, pose)) {
+    const shared_layout::LightParams lights = pack_light_params(placed_lights_);
+    gl::api.BindBuffer(GL_UNIFORM_BUFFER, lights_.id());
+    gl::api.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof lights, &lights);
+    gl::api.BindBuffer(GL_UNIFORM_BUFFER, 0);  // lights do not change the AO: not a move
   }
   for (Morphed& morphed : morphed_) {
     const std::vector<float>& weights = pose.weights()[static_cast<size_t>(morphed.node)];

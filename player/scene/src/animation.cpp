@@ -90,12 +90,22 @@ void pose_instances(Scene& scene, const Pose& pose) {
       instance.world = pose.worlds()[static_cast<size_t>(instance.node)] * instance.offset;
     }
   }
-  pose_lights_and_cameras(scene.lights, scene.cameras, pose);
+  pose_lights(scene.lights, pose);
+  pose_cameras(scene.cameras, pose);
 }
 
-void pose_lights_and_cameras(std::vector<Light>& lights, std::vector<FileCamera>& cameras, const Pose& pose) {
-  for (Light& light : lights)
-    if (light.rig_node >= 0) place_light(light, pose.worlds()[static_cast<size_t>(light.rig_node)]);
+bool pose_lights(std::vector<Light>& lights, const Pose& pose) {
+  bool moved = false;
+  for (Light& light : lights) {
+    if (light.rig_node < 0) continue;
+    const glm::dvec3 position = light.position, direction = light.direction;
+    place_light(light, pose.worlds()[static_cast<size_t>(light.rig_node)]);
+    moved = moved || position != light.position || direction != light.direction;
+  }
+  return moved;
+}
+
+void pose_cameras(std::vector<FileCamera>& cameras, const Pose& pose) {
   for (FileCamera& camera : cameras)
     if (camera.rig_node >= 0) place_camera(camera, pose.worlds()[static_cast<size_t>(camera.rig_node)]);
 }

@@ -130,9 +130,8 @@ void SceneCache::pose(int item, double item_time) {
   }
   if (!scene.pose) return;
   scene.pose->at(selection, item_time * animation_speeds_[i]);
-  scene.gpu->pose(*scene.pose);
-  no_lights_.clear();
-  scene::pose_lights_and_cameras(no_lights_, scene.cameras, *scene.pose);
+  scene.gpu->pose(*scene.pose);  // the draws and the lights
+  scene::pose_cameras(scene.cameras, *scene.pose);
 }
 
 void SceneCache::reload_all() {

@@ -81,7 +81,6 @@ class SceneCache {
   void set_playable(const std::string& key, bool playable, playback::Timeline& timeline) const;
 
   Loader& loader_;
-  std::vector<scene::Light> no_lights_;  // the GPU scene places the lights; the cache its cameras
   const gl::Caps& caps_;
   StatusReporter& status_;
   std::ostream& err_;

@@ -115,7 +115,6 @@ class SceneGpu {
   gl::Buffer lights_;
   int light_count_ = 0;
   std::vector<scene::Light> placed_lights_;  // as the last pose placed them (those nodes move)
-  std::vector<scene::FileCamera> no_cameras_;
   std::shared_ptr<const scene::Rig> rig_;
   std::uint64_t pose_version_ = 0;
   // A mesh the frames reshape (scene::Mesh::morph): its vertices, targets and rest weights as the
@@ -127,14 +126,14 @@ class SceneGpu {
     std::vector<float> shown;
   };
   std::vector<Morphed> morphed_;
-  // Writes `draw`'s joint matrices (each joint's world times inverse bind, of `joint_world`) into
-  // the staging rows, relative to its anchor; true when a row changed.
-  template <typename JointWorld>
-  bool write_joints(const Draw& draw, size_t joints, const JointWorld& joint_world);
+  // Writes `draw`'s joint matrices (scene::skin_matrices) into the staging rows, relative to its
+  // anchor; true when a row changed.
+  bool write_joints(const Draw& draw, const std::vector<glm::dmat4>& skin_matrices);
   void upload_joints();
   gl::Texture joint_matrices_;
-  std::vector<glm::vec4> joint_rows_;  // the texture's texels, as the last pose left them
-  std::vector<scene::Vertex> shaped_;  // as long as the longest morphed mesh
+  std::vector<glm::vec4> joint_rows_;    // the texture's texels, as the last pose left them
+  std::vector<glm::dmat4> pose_joints_;  // one skin's matrices at the pose, sized for the largest
+  std::vector<scene::Vertex> shaped_;    // as long as the longest morphed mesh
 };
 
 }  // namespace render

@@ -108,11 +108,13 @@ struct Scene;
 // nodes. The bounds stay those
 // of the whole animation (include_animation_in_bounds), so every pose is framed alike.
 void pose_instances(Scene& scene, const Pose& pose);
-// The lights and cameras of a scene that moving nodes carry, placed as `pose` has posed them (a
-// light the pose leaves without a position or direction stays where it was); allocates nothing.
+// The lights that moving nodes carry, placed as `pose` has posed them (a light the pose leaves
+// without a position or direction stays where it was); true when one moved. Allocates nothing.
 struct Light;
+bool pose_lights(std::vector<Light>& lights, const Pose& pose);
+// The file's cameras that moving nodes carry, placed as `pose` has posed them; allocates nothing.
 struct FileCamera;
-void pose_lights_and_cameras(std::vector<Light>& lights, std::vector<FileCamera>& cameras, const Pose& pose);
+void pose_cameras(std::vector<FileCamera>& cameras, const Pose& pose);
 // Shapes the meshes with morph targets at the weights `pose` gives the nodes that show them (the
 // loader gives each such node a mesh of its own).
 void pose_meshes(Scene& scene, const Pose& pose);

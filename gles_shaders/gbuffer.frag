@@ -4,6 +4,8 @@
 // HAS_NORMAL_TEXTURE (with the mesh's tangents), HAS_OCCLUSION_TEXTURE, HAS_EMISSIVE_TEXTURE; each
 // texture but the base colour's reads the second UV mapping where <NAME>_UV1 is defined.
 // ALPHA_MASK: the alpha-tested variant, only for materials whose alphaMode asks for it.
+// MOTION: the surface point's motion since the previous AO frame, in this view's space (gbuffer.vert),
+// for temporal.comp to find the point's history where it was, not where the camera alone puts it.
 // NO_MATERIAL_TARGET: light field modules on a GPU with four draw buffers (see material.glsl).
 precision highp float;
 
@@ -16,6 +18,10 @@ layout(location = 1) out vec4 o_normal;
 layout(location = 2) out float o_linear_depth;
 #ifndef NO_MATERIAL_TARGET
 layout(location = 3) out highp uvec2 o_material;
+#endif
+#ifdef MOTION
+in vec3 v_view_motion;
+layout(location = 4) out vec4 o_motion;  // never with LIGHTFIELD_MODULES: modules keep no history
 #endif
 #ifdef LIGHTFIELD_MODULES
 in vec3 v_world_position;
@@ -47,5 +53,8 @@ void main() {
   o_linear_depth = -v_view_position.z;
 #ifdef LIGHTFIELD_MODULES
   o_world_position = vec4(v_world_position, 1.0);
+#endif
+#ifdef MOTION
+  o_motion = vec4(v_view_motion, 0.0);
 #endif
 }

@@ -3,6 +3,11 @@
 // SKINNED: each vertex is first moved by the weighted blend of its four joints' matrices, which a
 // texture holds relative to the draw's anchor (see SceneGpu: three RGBA32F texels per joint, the
 // rows of its affine matrix, 64 joints to a row of the texture).
+// MOTION (an animated scene's temporal AO): the vertex's position at the previous AO frame, through
+// the previous model-view (composed with this frame's view, so the difference is the surface's own
+// motion in this view's axes) and, SKINNED, the previous pose's joints (the second half of the
+// texture's rows); the difference goes to the motion target. A mesh that nothing morphs has its
+// own positions as a_previous_position.
 // LIGHTFIELD_MODULES: u_model_view takes the model to physical space, the module's world-to-image
 // transform (lightfield.glsl) places the vertex, and the world position goes to the positions texture.
 precision highp float;
@@ -29,13 +34,18 @@ layout(location = 6) in vec4 a_joint_weights;
 uniform highp sampler2D u_joint_matrices;
 uniform int u_joint_base;
 
-mat4 joint_matrix(uint joint) {
-  int index = u_joint_base + int(joint);
+mat4 joint_matrix(int index) {
   ivec2 at = ivec2((index % 64) * 3, index / 64);
   // The texels are the rows; a mat4 is built from columns.
   return transpose(mat4(texelFetch(u_joint_matrices, at, 0), texelFetch(u_joint_matrices, at + ivec2(1, 0), 0),
                         texelFetch(u_joint_matrices, at + ivec2(2, 0), 0), vec4(0.0, 0.0, 0.0, 1.0)));
 }
+#endif
+
+#ifdef MOTION
+layout(location = 7) in vec3 a_previous_position;
+uniform mat4 u_previous_model_view;
+out vec3 v_view_motion;
 #endif
 
 uniform mat4 u_model_view;
@@ -55,8 +65,10 @@ void main() {
   vec3 tangent = a_tangent.xyz;
 #endif
 #ifdef SKINNED
-  mat4 skin = a_joint_weights.x * joint_matrix(a_joints.x) + a_joint_weights.y * joint_matrix(a_joints.y) +
-              a_joint_weights.z * joint_matrix(a_joints.z) + a_joint_weights.w * joint_matrix(a_joints.w);
+  mat4 skin = a_joint_weights.x * joint_matrix(u_joint_base + int(a_joints.x)) +
+              a_joint_weights.y * joint_matrix(u_joint_base + int(a_joints.y)) +
+              a_joint_weights.z * joint_matrix(u_joint_base + int(a_joints.z)) +
+              a_joint_weights.w * joint_matrix(u_joint_base + int(a_joints.w));
   position = (skin * vec4(position, 1.0)).xyz;
   // The blend's linear part for the normal too: exact for rotations and uniform scales, which is
   // what joints carry; the fragment stage normalises.
@@ -66,6 +78,18 @@ void main() {
 #endif
 #endif
   vec4 view = u_model_view * vec4(position, 1.0);
+#ifdef MOTION
+  vec3 previous = a_previous_position;
+#ifdef SKINNED
+  int previous_base = u_joint_base + (textureSize(u_joint_matrices, 0).y / 2) * 64;
+  mat4 previous_skin = a_joint_weights.x * joint_matrix(previous_base + int(a_joints.x)) +
+                       a_joint_weights.y * joint_matrix(previous_base + int(a_joints.y)) +
+                       a_joint_weights.z * joint_matrix(previous_base + int(a_joints.z)) +
+                       a_joint_weights.w * joint_matrix(previous_base + int(a_joints.w));
+  previous = (previous_skin * vec4(previous, 1.0)).xyz;
+#endif
+  v_view_motion = (u_previous_model_view * vec4(previous, 1.0)).xyz - view.xyz;
+#endif
   v_view_normal = u_normal_matrix * normal;
   v_uv = a_uv;
 #ifdef HAS_NORMAL_TEXTURE

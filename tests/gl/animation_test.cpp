@@ -3,6 +3,7 @@
 #include "scene/animation.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include "animated_scenes.h"
 #include "harness.h"
 #include "scene/procedural.h"
 
@@ -16,6 +17,14 @@ render::FrameSettings small_frame() {
   render::FrameSettings settings;
   settings.width = settings.height = kSize;
   settings.check_errors = true;
+  return settings;
+}
+
+// For comparing shapes: without temporal accumulation the frame after a pose is that pose's alone
+// (with it, a pose that jumps keeps a little of the last pose's AO for a few frames: motion_test.cpp).
+render::FrameSettings one_frame_ao() {
+  render::FrameSettings settings = small_frame();
+  settings.temporal = false;
   return settings;
 }
 
@@ -125,7 +134,7 @@ TEST_P(Animated, APoseReshapesAMorphedMeshAsTheCpuShapesIt) {
     scene::update_bounds(built);
     return built;
   };
-  const render::FrameSettings settings = small_frame();
+  const render::FrameSettings settings = one_frame_ao();
   const scene::Framing framing = from_the_front(30);
   const glm::dvec3 above_the_top(0, 1.5, 0);
   std::vector<uint8_t> shaped_on_gpu;
@@ -160,32 +169,14 @@ TEST_P(Animated, APoseReshapesAMorphedMeshAsTheCpuShapesIt) {
 // moved in the vertex stage by the joint matrices, the frame is the one of the same box moved on the
 // CPU (scene::skin_vertices) and uploaded unskinned.
 TEST_P(Animated, APoseBendsASkinnedMeshAsTheCpuSkinsIt) {
-  auto rig = std::make_shared<scene::Rig>();
-  rig->nodes.resize(2);
-  rig->nodes[1].parent = 0;
-  rig->nodes[1].translation = {0, 0.5, 0};
-  scene::Rig::Skin skin;
-  skin.joints = {0, 1};
-  skin.inverse_bind = {glm::dmat4(1.0), glm::translate(glm::dmat4(1.0), glm::dvec3(0, -0.5, 0))};
-  rig->skins = {skin};
-  scene::AnimationChannel tilt;
-  tilt.node = 1;
-  tilt.property = scene::AnimatedProperty::rotation;
-  const double half = glm::radians(50.0) / 2;
-  tilt.times = {0.0f, 1.0f};
-  tilt.values = {{0, 0, 0, 1}, {0, 0, float(std::sin(half)), float(std::cos(half))}};
-  rig->animations.push_back({"tilt", {tilt}, 1.0});
+  const std::shared_ptr<scene::Rig> rig = test::tilting_rig();
   auto build = [&](const std::vector<glm::dmat4>* bent) {
     scene::Scene built;
     scene::Material white, red;
     red.base_color = glm::vec4(1, 0, 0, 1);
     built.materials = {white, red};
     scene::add_instance(built, scene::make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 0));
-    scene::Mesh box = scene::make_box({-0.25f, 0.0f, -0.25f}, {0.25f, 1.0f, 0.25f}, 1);
-    for (const scene::Vertex& v : box.vertices) {
-      box.joints.push_back({v.position.y > 0.5f ? 1 : 0, 0, 0, 0});
-      box.joint_weights.emplace_back(1, 0, 0, 0);
-    }
+    scene::Mesh box = test::jointed_box();
     if (bent) {  // skinned here, drawn as it is
       std::vector<scene::Vertex> moved(box.vertices.size());
       scene::skin_vertices(box, *bent, moved);
@@ -206,7 +197,7 @@ TEST_P(Animated, APoseBendsASkinnedMeshAsTheCpuSkinsIt) {
     built.bounds.max = glm::dvec3(3, 1, 3);
     return built;
   };
-  const render::FrameSettings settings = small_frame();
+  const render::FrameSettings settings = one_frame_ao();
   const scene::Framing framing = from_the_front(30);
   scene::Pose pose(rig);
   pose.at(scene::Rig::kAllAnimations, 1.0 - 1e-9);

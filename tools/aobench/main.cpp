@@ -7,6 +7,7 @@
 #include "aoref/reference.h"
 #include "chart.h"
 #include "configs.h"
+#include "ghosting.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "gl/session.h"
@@ -62,6 +63,8 @@ struct Options {
   std::string chart = "out/aobench.png";
   std::string noise_chart = "out/aobench-noise.png";
   bool temporal = true;  // the accumulation columns (still camera and turntable)
+  bool ghosting = false;
+  aobench::GhostingOptions ghost;
 };
 
 // The turntable of the temporal columns: 10 degrees per second at 30 frames per second.
@@ -161,6 +164,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cli.add_flag("!--no-temporal", options.temporal,
                "Leave out the temporal columns (error after 1, 4 and 16 accumulated frames, still and turntable; instability)");
+  cli.add_flag("--ghosting", options.ghosting,
+               "Instead: temporal AO on animated scenes (default: the animated samples in ../shared/samples), its error over "
+               "moving pixels against one frame's, with and without motion vectors (docs/ao.md, AO of moving parts)");
+  cli.add_option("--ghosting-frames", options.ghost.frames, "--ghosting: frames played up to each measured pose")
+      ->check(CLI::Range(2, 255))
+      ->capture_default_str();
+  cli.add_option("--ghosting-poses", options.ghost.poses, "--ghosting: poses measured per scene, spread over its loop")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
   int width = 0, height = 0;
@@ -169,6 +181,13 @@ int main(int argc, char** argv) {
   if (!(size_text >> width >> separator >> height) || separator != 'x' || width < 8 || height < 8) {
     std::cerr << "error: --size: '" << options.size << "' is not WxH (e.g. 1024x768)\n";
     return 2;
+  }
+  if (options.ghosting) {
+    options.ghost.scenes = options.scenes;
+    options.ghost.width = width;
+    options.ghost.height = height;
+    options.ghost.platform = options.platform;
+    return aobench::run_ghosting(options.ghost);
   }
   if (options.scenes.empty()) {
     options.scenes.push_back("builtin:demo");

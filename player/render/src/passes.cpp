@@ -99,6 +99,10 @@ void draw_one(const PassContext& context, const RasterProgram& program, const Sc
   else
     gl::api.Enable(GL_CULL_FACE);
   if (bits & features::skinned) gl::api.Uniform1i(program.joint_base, draw.joint_base);
+  if (bits & features::motion) {
+    const glm::mat4 previous_model_view(context.view.view * draw.previous_world);
+    gl::api.UniformMatrix4fv(program.previous_model_view, 1, GL_FALSE, glm::value_ptr(previous_model_view));
+  }
   const SceneGpu::Mesh& mesh = scene.meshes()[static_cast<size_t>(draw.mesh)];
   gl::api.BindVertexArray(mesh.vao.id());
   gl::api.DrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
@@ -124,6 +128,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
   const SceneGpu& scene = context.scene;
   const bool untextured_variant = context.targets.settings().untextured_variant;
   const bool modules = context.view.module.has_value();
+  const unsigned motion = !depth_only && context.targets.motion_attached() ? features::motion : 0;
   const RasterProgram& depth_program = modules ? programs.module_depth_only : programs.depth_only;
   const RasterProgram& masked_depth_program = modules ? programs.module_depth_masked : programs.depth_masked;
   if (modules) gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_MODULE_PARAMS, context.targets.module_ubo.id());
@@ -137,7 +142,7 @@ void draw_scene(const PassContext& context, bool depth_only) {
       const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
       const bool masked = material.alpha_tested();
       const bool skinned = draw.skin >= 0;
-      const unsigned bits = material_features(material, untextured_variant) | (skinned ? features::skinned : 0);
+      const unsigned bits = material_features(material, untextured_variant) | (skinned ? features::skinned : 0) | motion;
       // Every variant a scene's materials need was compiled when the view was configured for it.
       const RasterProgram* program = !depth_only ? programs.gbuffer(bits, modules)
                                      : skinned   ? programs.skinned_depth(masked, modules)
@@ -212,6 +217,7 @@ void begin_raster(const PassContext& context) {
     gl::api.ClearBufferuiv(GL_COLOR, 3, cleared);
   }
   if (context.targets.modules()) gl::api.ClearBufferfv(GL_COLOR, material ? 4 : 3, zero);
+  if (context.targets.motion_attached()) gl::api.ClearBufferfv(GL_COLOR, 4, zero);
   gl::api.DepthMask(GL_TRUE);
   gl::api.ClearBufferfv(GL_DEPTH, 0, &one);
 }
@@ -223,7 +229,9 @@ void accumulate(const PassContext& context, bool moved) {
   detail::update_uniform_buffer(targets.temporal_ubo, &targets.temporal_params, sizeof targets.temporal_params);
 
   const int previous = targets.history_current, next = 1 - previous;
-  gl::api.UseProgram(context.programs.temporal->id());
+  const bool motion = targets.motion_attached();
+  gl::api.UseProgram((motion ? context.programs.temporal_motion : context.programs.temporal)->id());
+  if (motion) bind_texture(4, targets.motion);
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_TEMPORAL_PARAMS, targets.temporal_ubo.id());
   bind_texture(0, targets.ao_raw);
   bind_texture(1, targets.normal);
@@ -239,17 +247,30 @@ void accumulate(const PassContext& context, bool moved) {
 
 }  // namespace
 
+bool follows_motion(const SceneGpu& scene, const FrameSettings& settings, bool modules) {
+  if (!settings.temporal || !settings.motion_vectors || modules || scene.rig() == nullptr || scene.rig()->animations.empty())
+    return false;
+  // The motion target is the fifth: a GPU of four draw buffers (VideoCore VI) reprojects by the
+  // camera alone, as before motion vectors.
+  GLint draw_buffers = 0;
+  gl::api.GetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+  return draw_buffers >= 5;
+}
+
 bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
                                bool srgb_target, std::string& error) {
+  const unsigned motion = follows_motion(scene, settings, modules) ? features::motion : 0;
   for (const scene::Material& material : scene.materials())
-    if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant), modules, error)) return false;
+    if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant) | motion, modules, error))
+      return false;
   // A skinned draw's variants besides (light field modules draw blended materials in the G-buffer).
   for (const std::vector<SceneGpu::Draw>* draws : {&scene.draws(), &scene.blended_draws()})
     for (const SceneGpu::Draw& draw : *draws) {
       if (draw.skin < 0) continue;
       const scene::Material& material = scene.materials()[static_cast<size_t>(draw.material)];
       if (!programs.prepare_skinned_depth(modules, error) ||
-          !programs.prepare_gbuffer(material_features(material, settings.untextured_variant) | features::skinned, modules, error))
+          !programs.prepare_gbuffer(material_features(material, settings.untextured_variant) | features::skinned | motion,
+                                    modules, error))
         return false;
     }
   if (modules || settings.output != Picture::color) return true;

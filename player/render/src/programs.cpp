@@ -27,6 +27,7 @@ std::string gbuffer_defines(unsigned bits) {
   define(features::occlusion_uv1, "OCCLUSION_UV1");
   define(features::emissive_uv1, "EMISSIVE_UV1");
   define(features::skinned, "SKINNED");
+  define(features::motion, "MOTION");
   if (bits & (features::metallic_roughness_uv1 | features::normal_uv1 | features::occlusion_uv1 | features::emissive_uv1))
     defines += "#define HAS_UV1 1\n";
   return defines;
@@ -47,6 +48,7 @@ bool build_raster(gl::ProgramCache& cache, RasterProgram& out, const char* fragm
   out.emissive = gl::uniform(*out.program, "u_emissive");
   out.frame_handedness = gl::uniform(*out.program, "u_frame_handedness");
   out.joint_base = gl::uniform(*out.program, "u_joint_base");
+  out.previous_model_view = gl::uniform(*out.program, "u_previous_model_view");
   gl::api.UseProgram(out.program->id());
   const std::pair<const char*, int> samplers[] = {{"u_base_color_texture", unit_base_color},
                                                   {"u_metallic_roughness_texture", unit_metallic_roughness},
@@ -162,6 +164,14 @@ bool Programs::prepare_gbuffer(unsigned feature_bits, bool modules, std::string&
   }
   gl::api.UseProgram(0);
   return true;
+}
+
+bool Programs::build_temporal_motion(std::string& error) {
+  if (temporal_motion != nullptr) return true;
+  temporal_motion = build_compute(*cache_, "temporal.comp", "#define MOTION 1\n",
+                                  {"u_current", "u_normal", "u_history", "u_history_normal", "u_motion"}, error);
+  gl::api.UseProgram(0);
+  return temporal_motion != nullptr;
 }
 
 bool Programs::prepare_skinned_depth(bool modules, std::string& error) {

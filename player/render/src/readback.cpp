@@ -71,6 +71,14 @@ std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets) {
   return read_normal_pair(targets, 2);
 }
 
+std::vector<glm::vec3> read_motion(const ViewTargets& targets) {
+  if (!targets.motion_attached()) return {};
+  const std::vector<float> rgba = read_rgba_float(targets.motion, targets.settings().width, targets.settings().height);
+  std::vector<glm::vec3> motion(rgba.size() / 4);
+  for (size_t i = 0; i < motion.size(); ++i) motion[i] = glm::vec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]);
+  return motion;
+}
+
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int w, int h) {
   const std::vector<float> rgba = read_rgba_float(texture, w, h);
   std::vector<glm::vec2> ao(rgba.size() / 4);

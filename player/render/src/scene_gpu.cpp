@@ -73,6 +73,19 @@ SceneGpu::Mesh allocate_mesh(const scene::Mesh& mesh) {
   gl::api.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(scene::Vertex, normal)));
   gl::api.EnableVertexAttribArray(2);
   gl::api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(scene::Vertex, uv)));
+  // Attribute 7, the previous pose's positions: a morphed mesh's own buffer (finish() fills it),
+  // everyone else's unmoved positions.
+  if (mesh.morph.target_count()) {
+    gpu.previous_positions = gl::make_buffer();
+    gl::api.BindBuffer(GL_ARRAY_BUFFER, gpu.previous_positions.id());
+    gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(glm::vec3)), nullptr,
+                       GL_DYNAMIC_DRAW);
+    gl::api.EnableVertexAttribArray(7);
+    gl::api.VertexAttribPointer(7, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  } else {
+    gl::api.EnableVertexAttribArray(7);
+    gl::api.VertexAttribPointer(7, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(scene::Vertex, position)));
+  }
   gl::api.BindVertexArray(0);
   gpu.index_count = static_cast<GLsizei>(mesh.indices.size());
   return gpu;
@@ -238,7 +251,7 @@ void SceneGpu::finish() {
     const bool skinned = instance.skin >= 0 && !mesh.joints.empty();
     (blended ? blended_ : draws_)
         .push_back({instance.mesh, mesh.material, instance.world, box_centre, instance.node, instance.offset,
-                    skinned ? instance.skin : -1, static_cast<int>(joint_rows_.size() / 3)});
+                    skinned ? instance.skin : -1, static_cast<int>(joint_rows_.size() / 3), instance.world});
     if (!skinned) continue;
     Draw& draw = (blended ? blended_ : draws_).back();
     // Whole rows of three texels per joint; the draw's joints start where the last draw's end.
@@ -250,9 +263,11 @@ void SceneGpu::finish() {
     const size_t joints = joint_rows_.size() / 3;
     const size_t rows = (joints + kJointsPerRow - 1) / kJointsPerRow;
     joint_rows_.resize(rows * kJointsPerRow * 3, glm::vec4(0.0f));
+    // The previous pose's half, the same until a pose moves something.
+    joint_rows_.insert(joint_rows_.end(), joint_rows_.begin(), joint_rows_.end());
     joint_matrices_ = gl::make_texture();
     gl::api.BindTexture(GL_TEXTURE_2D, joint_matrices_.id());
-    gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, kJointsPerRow * 3, static_cast<GLsizei>(rows));
+    gl::api.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, kJointsPerRow * 3, static_cast<GLsizei>(2 * rows));
     gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl::api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     upload_joints();
@@ -264,9 +279,13 @@ void SceneGpu::finish() {
   for (const scene::Instance& instance : scene.instances) {
     const scene::Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     if (instance.node < 0 || mesh.morph.target_count() == 0) continue;
-    Morphed morphed{instance.mesh, instance.node, scene::Mesh(), mesh.morph.weights};
+    Morphed morphed{instance.mesh, instance.node, scene::Mesh(), mesh.morph.weights, {}, false};
     morphed.source.vertices = mesh.vertices;
     morphed.source.morph = mesh.morph;
+    morphed.positions.reserve(mesh.vertices.size());
+    for (const scene::Vertex& vertex : mesh.vertices) morphed.positions.push_back(vertex.position);
+    upload_range(meshes_[static_cast<size_t>(instance.mesh)].previous_positions, morphed.positions.data(), 0,
+                 morphed.positions.size() * sizeof(glm::vec3));
     shaped_.resize(std::max(shaped_.size(), mesh.vertices.size()));
     morphed_.push_back(std::move(morphed));
   }
@@ -316,6 +335,16 @@ void SceneGpu::pose(const scene::Pose& pose) {
   bool moved = false;
   bool bent = false;
   for (std::vector<Draw>* draws : {&draws_, &blended_})
+    for (Draw& draw : *draws) draw.previous_world = draw.world;
+  // The joints as the last pose left them become the previous pose's half.
+  const auto current_joints_end = joint_rows_.begin() + static_cast<std::ptrdiff_t>(joint_rows_.size() / 2);
+  // That is no move of this pose's, only a change of what the texture holds.
+  bool joints_changed = false;
+  if (!std::equal(joint_rows_.begin(), current_joints_end, current_joints_end)) {
+    std::copy(joint_rows_.begin(), current_joints_end, current_joints_end);
+    joints_changed = true;
+  }
+  for (std::vector<Draw>* draws : {&draws_, &blended_})
     for (Draw& draw : *draws) {
       if (draw.skin < 0) continue;
       const scene::Rig::Skin& skin = rig_->skins[static_cast<size_t>(draw.skin)];
@@ -325,7 +354,7 @@ void SceneGpu::pose(const scene::Pose& pose) {
       scene::skin_matrices(skin, node_worlds, pose_joints_);  // within the capacity finish() gave it
       bent = write_joints(draw, pose_joints_) || bent;
     }
-  if (bent) upload_joints();
+  if (bent || joints_changed) upload_joints();
   moved = moved || bent;
   if (scene::pose_lights(placed_lights_, pose)) {
     const shared_layout::LightParams lights = pack_light_params(placed_lights_);
@@ -335,11 +364,17 @@ void SceneGpu::pose(const scene::Pose& pose) {
   }
   for (Morphed& morphed : morphed_) {
     const std::vector<float>& weights = pose.weights()[static_cast<size_t>(morphed.node)];
-    if (weights.size() != morphed.shown.size() || weights == morphed.shown) continue;
+    const bool reshape = weights.size() == morphed.shown.size() && weights != morphed.shown;
+    const Mesh& mesh = meshes_[static_cast<size_t>(morphed.mesh)];
+    // The shape the buffer holds is the previous pose's from now on.
+    if (reshape || morphed.moving)
+      upload_range(mesh.previous_positions, morphed.positions.data(), 0, morphed.positions.size() * sizeof(glm::vec3));
+    morphed.moving = reshape;
+    if (!reshape) continue;
     scene::morph_vertices(morphed.source, weights.data(), shaped_);
     std::copy(weights.begin(), weights.end(), morphed.shown.begin());
-    upload_range(meshes_[static_cast<size_t>(morphed.mesh)].vertices, shaped_.data(), 0,
-                 morphed.source.vertices.size() * sizeof(scene::Vertex));
+    for (size_t i = 0; i < morphed.positions.size(); ++i) morphed.positions[i] = shaped_[i].position;
+    upload_range(mesh.vertices, shaped_.data(), 0, morphed.source.vertices.size() * sizeof(scene::Vertex));
     moved = true;
   }
   if (!morphed_.empty()) gl::api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);

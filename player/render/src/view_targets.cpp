@@ -17,7 +17,8 @@ void ViewTargets::reset_history() {
 }
 
 bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                            bool srgb_target, std::string& error, bool modules) {
+                            bool srgb_target, std::string& error, bool modules, bool follow_motion) {
+  const bool with_motion = follow_motion && settings.temporal && !modules;
   if (settings.width < 1 || settings.height < 1 || settings.width > caps.max_texture_size ||
       settings.height > caps.max_texture_size) {
     error = "--size: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " is outside 1.." +
@@ -31,6 +32,7 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
   ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
   present_program = programs.present(settings.output, srgb_target, error);
   if (present_program == nullptr) return false;
+  if (with_motion && !programs.build_temporal_motion(error)) return false;
   settings_ = settings;
   reset_history();
 
@@ -41,8 +43,8 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     blur_params[direction] =
         ssao::pack_blur_params(settings.blur, direction, ao_width(), ao_height(), settings.ao_settings.half_resolution ? 1 : 0);
 
-  const bool reallocate =
-      w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || modules != modules_ || !gbuffer_fbo;
+  const bool reallocate = w != width_ || h != height_ || settings.ao_settings.half_resolution != half_ || modules != modules_ ||
+                          with_motion != motion_ || !gbuffer_fbo;
   if (reallocate) {
     depth_levels = ssao::depth_chain_levels(w, h);
     albedo = make_target(GL_RGBA8, w, h);
@@ -74,6 +76,11 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
       gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, positions.id(), 0);
       buffers.push_back(attachment);
     }
+    motion = with_motion ? make_target(GL_RGBA16F, w, h) : gl::Texture{};
+    if (with_motion) {
+      gl::api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT4, GL_TEXTURE_2D, motion.id(), 0);
+      buffers.push_back(GL_COLOR_ATTACHMENT4);
+    }
     gl::api.DrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
     const GLenum status = gl::api.CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl::api.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -101,6 +108,7 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     shared_layout::ModuleParams module_params{};
     module_ubo = modules ? make_uniform_buffer(&module_params, sizeof module_params) : gl::Buffer{};
     modules_ = modules;
+    motion_ = with_motion;
     width_ = w;
     height_ = h;
     half_ = settings.ao_settings.half_resolution;

@@ -42,6 +42,11 @@ struct PassContext {
   }
 };
 
+// Whether a view of `scene` with `settings` follows each pixel's motion in its temporal pass: an
+// animated scene's, with temporal accumulation and motion vectors on, on a GPU with five draw
+// buffers; never a light field module's.
+bool follows_motion(const SceneGpu& scene, const FrameSettings& settings, bool modules);
+
 // Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), and the
 // forward variants of its blended ones into a target that encodes sRGB itself or not, so the
 // frames that draw it compile nothing.

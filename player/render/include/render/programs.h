@@ -18,7 +18,8 @@ struct RasterProgram {
   const gl::Program* program = nullptr;
   GLint model_view = -1, projection = -1, normal_matrix = -1, base_color = -1, texture = -1, alpha_cutoff = -1, lit = -1;
   GLint material = -1, emissive = -1, frame_handedness = -1;
-  GLint joint_base = -1;  // SKINNED: the draw's first row of the joint matrices texture
+  GLint joint_base = -1;           // SKINNED: the draw's first row of the joint matrices texture
+  GLint previous_model_view = -1;  // MOTION: the previous pose's model, through this frame's view
 };
 
 // What a material asks of the G-buffer program (gbuffer.frag's variants), as bits.
@@ -36,7 +37,10 @@ constexpr unsigned occlusion_uv1 = 1u << 8;
 constexpr unsigned emissive_uv1 = 1u << 9;
 // Not a material's: a skinned draw's vertices are moved by its joints (SKINNED).
 constexpr unsigned skinned = 1u << 10;
-constexpr unsigned count = 1u << 11;
+// Nor this: the G-buffer writes each pixel's motion since the previous pose (MOTION), for an
+// animated scene's temporal AO.
+constexpr unsigned motion = 1u << 11;
+constexpr unsigned count = 1u << 12;
 }  // namespace features
 
 // The feature bits of `material`; `untextured_variant` off: untextured materials fetch a white texel.
@@ -115,6 +119,9 @@ class Programs {
   gl::Texture brdf_lut;
   const gl::Program *depth_chain = nullptr, *blur_gaussian = nullptr, *blur_bilateral = nullptr, *blur_denoise = nullptr,
                     *upsample = nullptr, *temporal = nullptr;
+  // The temporal pass that reads the G-buffer's motion target (features::motion), compiled on first call.
+  bool build_temporal_motion(std::string& error);
+  const gl::Program* temporal_motion = nullptr;
   GLint depth_chain_source_level = -1;
   // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not.
   // The shaded image's two are built by build(); the debug outputs' on first use.

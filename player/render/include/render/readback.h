@@ -18,6 +18,9 @@ std::vector<float> read_linear_depth(const ViewTargets& targets);
 // normal of the face each pixel lies on (what the horizon estimator bounds its horizons with).
 std::vector<glm::vec3> read_view_normals(const ViewTargets& targets);
 std::vector<glm::vec3> read_view_face_normals(const ViewTargets& targets);
+// Each pixel's motion since the previous pose in view space (ViewTargets::motion); empty without
+// a motion target.
+std::vector<glm::vec3> read_motion(const ViewTargets& targets);
 // r: AO, g: depth / far, at the AO resolution.
 std::vector<glm::vec2> read_ao(const gl::Texture& texture, int width, int height);
 // Per AO texel, how many frames the temporal average holds (0 on background); empty without temporal.

@@ -30,6 +30,9 @@ class SceneGpu {
     gl::Buffer vertices, indices;
     gl::Buffer tangents, uv1;          // only where the scene's mesh has them
     gl::Buffer joints, joint_weights;  // a skinned mesh's
+    // A morphed mesh's positions at the previous pose (attribute 7, the MOTION variants'); other
+    // meshes give their own positions there.
+    gl::Buffer previous_positions;
     GLsizei index_count = 0;
   };
   struct Draw {
@@ -43,6 +46,9 @@ class SceneGpu {
     // joint_matrices(); `world` is then its anchor, the skin's first joint.
     int skin = -1;
     int joint_base = 0;
+    // `world` before the last pose (its anchor's, for a skinned draw): where the MOTION variants
+    // find the surface the previous frame drew.
+    glm::dmat4 previous_world{1.0};
   };
 
   // Starts uploading `scene` (kept alive until the upload ends). Nothing is drawable until ready().
@@ -70,7 +76,8 @@ class SceneGpu {
   const std::shared_ptr<const scene::Rig>& rig() const { return rig_; }
   void pose(const scene::Pose& pose);
   // The skinned draws' joint matrices (RGBA32F, three texels per joint: the rows of the affine matrix
-  // from the draw's mesh to its anchor; 64 joints to a row), empty without skins.
+  // from the draw's mesh to its anchor; 64 joints to a row), empty without skins. The second half of
+  // its rows holds the same at the previous pose.
   const gl::Texture& joint_matrices() const { return joint_matrices_; }
   // Counts the poses that moved a draw: the AO of an earlier count is not this scene's any more.
   std::uint64_t pose_version() const { return pose_version_; }
@@ -124,6 +131,8 @@ class SceneGpu {
     int node;
     scene::Mesh source;
     std::vector<float> shown;
+    std::vector<glm::vec3> positions;  // as its vertex buffer holds them now
+    bool moving = false;               // the last pose reshaped it: its previous positions differ
   };
   std::vector<Morphed> morphed_;
   // Writes `draw`'s joint matrices (scene::skin_matrices) into the staging rows, relative to its

@@ -18,8 +18,10 @@ class ViewTargets {
   // `srgb_target`: the framebuffer the view is presented into encodes sRGB itself.
   // `modules`: the targets of light field modules (a positions texture for Algorithm 2, the
   // module's uniform block, the LIGHTFIELD_MODULES programs).
+  // `follow_motion`: the G-buffer gets a motion target and the temporal pass follows it (an animated scene;
+  // see motion_attached()).
   bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius, bool srgb_target,
-                 std::string& error, bool modules = false);
+                 std::string& error, bool modules = false, bool follow_motion = false);
   // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
   void reset_history();
 
@@ -49,6 +51,10 @@ class ViewTargets {
   // Whether the G-buffer pass writes `material` (see Programs::modules_without_material).
   bool material_attached() const { return material_attached_; }
   gl::Texture positions;  // modules only: world position per pixel, a = 1 on objects
+  // An animated scene's only (RGBA16F, attachment 4): xyz, each pixel's surface point's previous
+  // view position minus its current one, 0 where nothing moved (gbuffer.frag's MOTION).
+  gl::Texture motion;
+  bool motion_attached() const { return motion_; }
   // Temporal accumulation, ping-ponged: r = averaged AO, g = depth / far, b = frames averaged (rgba32f); and
   // the world normal of each texel, for the next frame's disocclusion test.
   gl::Texture history[2], history_normal[2];
@@ -81,7 +87,7 @@ class ViewTargets {
  private:
   FrameSettings settings_;
   int width_ = 0, height_ = 0;
-  bool half_ = false, modules_ = false, material_attached_ = true;
+  bool half_ = false, modules_ = false, material_attached_ = true, motion_ = false;
 };
 
 }  // namespace render

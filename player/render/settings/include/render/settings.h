@@ -43,6 +43,10 @@ struct FrameSettings {
   // frames' AO found by reprojection; `history` frames at most (TEMPORAL_MOVING_FRAMES while the
   // camera moves). With reuse_static_ao, a still camera stops computing AO once it has `history`.
   bool temporal = true;
+  // In an animated scene, the temporal pass follows each pixel's own motion (a motion target the
+  // G-buffer writes from the previous pose), not the camera's alone. Off only to measure what it
+  // saves (aobench --ghosting): history is then found where the camera alone puts it.
+  bool motion_vectors = true;
   // The shaded image's visibility is (1 - AO)^ao_strength; the AO itself (the AO view, dumps,
   // aobench) is never changed by it.
   float ao_strength = 1.0f;

@@ -294,6 +294,21 @@ TEST(AnimationSampler, WeightsInterpolateEachAsAScalar) {
   }
 }
 
+// A target's TANGENT displacements are not applied: said once for the primitive, and it loads.
+TEST_F(GltfAnimation, MorphTargetTangentsAreWarnedNotApplied) {
+  json doc = morphing({0}, {0, 2}, {0, 1});
+  doc["meshes"][0]["primitives"][0]["targets"][0]["TANGENT"] = doc["meshes"][0]["primitives"][0]["targets"][0]["NORMAL"];
+  scene::Scene out;
+  scene::LoadReport report;
+  ASSERT_TRUE(scene::load_gltf(write(doc), out, report)) << report.error;
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0],
+            "meshes[0].primitives[0].targets: TANGENT displacements are not applied; a normal map turns with the base tangents, "
+            "made orthogonal to the morphed normal");
+  ASSERT_EQ(out.meshes.size(), 1u);
+  EXPECT_EQ(out.meshes[0].morph.target_count(), 1u);
+}
+
 TEST_F(GltfAnimation, MorphTargetsShapeTheMeshAtTheNodesWeightsAndTheAnimationReshapesIt) {
   // Without an animation the mesh is loaded in the shape its weights give and keeps no targets.
   const scene::Scene still = load_ok(write(morphing({0.5}, {}, {})));

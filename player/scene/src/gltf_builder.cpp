@@ -367,6 +367,10 @@ class Builder {
       return {};
     }
     Mesh::Morph morph = read_morph_targets(document_, primitive, positions.size(), where, quantized_);
+    if (std::any_of(primitive.targets.begin(), primitive.targets.end(), [](const auto& t) { return t.count("TANGENT") > 0; }))
+      report_.warnings.push_back(where +
+                                 ".targets: TANGENT displacements are not applied; a normal map turns with the "
+                                 "base tangents, made orthogonal to the morphed normal");
     morph.weights = weights;
     morph.base_normals = normals;
     for (size_t t = 0; t < weights.size(); ++t) {

@@ -64,7 +64,8 @@ highp vec3 punctual_light(SurfacePoint s, highp vec3 l, highp vec3 e) {
   highp float d_denominator = nh * nh * (a2 - 1.0) + 1.0;
   highp float distribution = a2 / (PBR_PI * d_denominator * d_denominator);
   highp float visibility = 0.5 / (nl * sqrt(s.nv * s.nv * (1.0 - a2) + a2) + s.nv * sqrt(nl * nl * (1.0 - a2) + a2));
-  highp vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vh, 5.0);
+  highp float grazing = 1.0 - vh, grazing_squared = grazing * grazing;  // pow(x, 5) is two transcendentals on llvmpipe
+  highp vec3 fresnel = s.f0 + (1.0 - s.f0) * (grazing_squared * grazing_squared * grazing);
   return ((1.0 - fresnel) * s.diffuse_color / PBR_PI + fresnel * distribution * visibility) * e * nl;
 }
 

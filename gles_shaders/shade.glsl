@@ -3,7 +3,8 @@
 // specular occlusion derived from it, plus the key light, or the scene's own lights in its place,
 // which visibility does not touch: they stand for lights with shadows of their own that
 // screen-space AO does not know. Shared by the present pass (opaque surfaces from the G-buffer)
-// and the forward pass (blended ones).
+// and the forward pass (blended ones). NO_SCENE_LIGHTS: the present pass of a scene without lights
+// of its own leaves their loop out (llvmpipe paid for it even at a count of 0).
 #ifndef SHADE_GLSL
 #define SHADE_GLSL
 
@@ -36,6 +37,7 @@ highp vec3 shade(highp vec3 base_color, highp float metallic, highp float roughn
                     environment_specular);
   highp vec3 color = environment_diffuse * visibility + environment_specular * specular_occlusion(s.nv, visibility, s.roughness);
   color += punctual_light(s, composite.light_direction.xyz, composite.light_color.rgb);
+#ifndef NO_SCENE_LIGHTS
   if (lights.count > 0) {
     highp vec3 world_position = (composite.view_to_world * vec4(view_position, 1.0)).xyz;
     // World to view for directions: the view's rotation and a uniform scale (a module's), which
@@ -57,6 +59,7 @@ highp vec3 shade(highp vec3 base_color, highp float metallic, highp float roughn
       color += punctual_light(s, normalize(to_view * to_light), lights.color[i].rgb * falloff);
     }
   }
+#endif
   return color;
 }
 

@@ -60,7 +60,7 @@ bool LightFieldOutput::configure(const FrameSettings& frame_settings, const Scen
   // For the same reason there is no history to accumulate from: the previous frame of these targets
   // is another view's.
   settings.temporal = false;
-  if (!targets_.configure(programs_, caps, settings, scene.radius(), false, error, modules) ||
+  if (!targets_.configure(programs_, caps, settings, scene, false, error, modules) ||
       !prepare_material_programs(programs_, scene, settings, modules, false, error))
     return false;
   if (!programs_.build_interleave(error)) return false;  // also the copy present() uses

@@ -4,8 +4,7 @@ namespace render {
 
 bool ViewOutput::configure(const FrameSettings& settings, const SceneGpu& scene, bool srgb_target, std::string& error) {
   adjustment_.clear();
-  return targets_.configure(programs_, caps_, settings, scene.radius(), srgb_target, error, false,
-                            follows_motion(scene, settings, false)) &&
+  return targets_.configure(programs_, caps_, settings, scene, srgb_target, error) &&
          prepare_material_programs(programs_, scene, settings, false, srgb_target, error);
 }
 

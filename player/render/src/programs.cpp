@@ -99,7 +99,7 @@ bool Programs::build(gl::Session& session, std::string& error) {
             build_compute(cache, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", {"u_source", "u_normal"}, error)) ||
       !(temporal =
             build_compute(cache, "temporal.comp", "", {"u_current", "u_normal", "u_history", "u_history_normal"}, error)) ||
-      !present(Picture::color, true, error) || !present(Picture::color, false, error))
+      !present(Picture::color, true, false, error) || !present(Picture::color, false, false, error))
     return false;
   depth_chain_source_level = gl::uniform(*depth_chain, "u_source_level");
   gl::api.UseProgram(0);
@@ -188,6 +188,7 @@ bool Programs::prepare_skinned_depth(bool modules, std::string& error) {
 }
 
 bool Programs::prepare_forward(unsigned feature_bits, bool srgb, std::string& error) {
+  feature_bits &= features::motion - 1;
   RasterProgram& program = forward_[srgb ? 1 : 0][feature_bits];
   if (program.program != nullptr) return true;
   const std::string defines = gbuffer_defines(feature_bits) + (srgb ? "" : "#define ENCODE_SRGB 1\n");
@@ -199,11 +200,11 @@ bool Programs::prepare_forward(unsigned feature_bits, bool srgb, std::string& er
   return true;
 }
 
-const gl::Program* Programs::present(Picture output, bool srgb, std::string& error) {
-  const gl::Program*& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0];
+const gl::Program* Programs::present(Picture output, bool srgb, bool scene_lights, std::string& error) {
+  const gl::Program*& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0][scene_lights ? 1 : 0];
   if (program == nullptr) {
-    const std::string defines =
-        "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" + (srgb ? "" : "#define ENCODE_SRGB 1\n");
+    const std::string defines = "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" +
+                                (srgb ? "" : "#define ENCODE_SRGB 1\n") + (scene_lights ? "" : "#define NO_SCENE_LIGHTS 1\n");
     program =
         build_fullscreen(*cache_, "present.frag", defines,
                          {"u_albedo", "u_normal", "u_linear_depth", "u_ao", "u_material", "u_specular", "u_brdf_lut"}, error);

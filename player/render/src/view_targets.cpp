@@ -1,6 +1,7 @@
 #include "render/view_targets.h"
 
 #include "gl_util.h"
+#include "render/passes.h"
 
 #include <vector>
 
@@ -16,9 +17,10 @@ void ViewTargets::reset_history() {
   raster_with = raster_without = -1.0;
 }
 
-bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius,
-                            bool srgb_target, std::string& error, bool modules, bool follow_motion) {
-  const bool with_motion = follow_motion && settings.temporal && !modules;
+bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, const SceneGpu& scene,
+                            bool srgb_target, std::string& error, bool modules) {
+  const bool with_motion = follows_motion(scene, settings, modules);
+  const double scene_radius = scene.radius();
   if (settings.width < 1 || settings.height < 1 || settings.width > caps.max_texture_size ||
       settings.height > caps.max_texture_size) {
     error = "--size: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " is outside 1.." +
@@ -30,7 +32,7 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
   if (ssao_program == nullptr) return false;
   ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
   ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
-  present_program = programs.present(settings.output, srgb_target, error);
+  present_program = programs.present(settings.output, srgb_target, scene.light_count() > 0, error);
   if (present_program == nullptr) return false;
   if (with_motion && !programs.build_temporal_motion(error)) return false;
   settings_ = settings;

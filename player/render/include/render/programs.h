@@ -100,7 +100,7 @@ class Programs {
   // The forward program of blended materials (forward.frag) of a feature set (without alpha_mask),
   // into a framebuffer that encodes sRGB itself (`srgb`) or not; null before prepare_forward.
   const RasterProgram* forward(unsigned feature_bits, bool srgb) const {
-    const RasterProgram& program = forward_[srgb ? 1 : 0][feature_bits];
+    const RasterProgram& program = forward_[srgb ? 1 : 0][feature_bits & (features::motion - 1)];
     return program.program ? &program : nullptr;
   }
   bool prepare_forward(unsigned feature_bits, bool srgb, std::string& error);
@@ -123,9 +123,11 @@ class Programs {
   bool build_temporal_motion(std::string& error);
   const gl::Program* temporal_motion = nullptr;
   GLint depth_chain_source_level = -1;
-  // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not.
-  // The shaded image's two are built by build(); the debug outputs' on first use.
-  const gl::Program* present(Picture output, bool srgb, std::string& error);
+  // The present pass for `output`, into a framebuffer that encodes sRGB itself (`srgb`) or not,
+  // for a scene with lights of its own (`scene_lights`) or none (NO_SCENE_LIGHTS: llvmpipe paid 5 of
+  // 36 ms at 1024x768 for the loop over no lights). The shaded image's for a scene without lights
+  // are built by build(); the others on first use.
+  const gl::Program* present(Picture output, bool srgb, bool scene_lights, std::string& error);
   gl::VertexArray empty_vertex_array;  // the present pass has no attributes; core GL still wants a VAO
   gl::Texture white;                   // stands in for a missing base colour texture when untextured_variant is off
 
@@ -136,8 +138,9 @@ class Programs {
   template <typename T>
   using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
   PerVariant<const gl::Program*> ssao_{};
-  std::array<std::array<const gl::Program*, 2>, std::size(kPictureNames)> present_{};
-  std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{}, forward_{};
+  std::array<std::array<std::array<const gl::Program*, 2>, 2>, std::size(kPictureNames)> present_{};
+  std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{};
+  std::array<std::array<RasterProgram, features::motion>, 2> forward_{};  // blended draws write no motion
   std::array<std::array<RasterProgram, 2>, 2> skinned_depth_{};
   PerVariant<std::string> ssao_defines_{};
   PerVariant<GLint> ssao_inverse_far_{};

@@ -4,6 +4,7 @@
 #include "gl/caps.h"
 #include "gl/objects.h"
 #include "render/programs.h"
+#include "render/scene_gpu.h"
 #include "render/settings.h"
 
 #include <cstdint>
@@ -18,10 +19,10 @@ class ViewTargets {
   // `srgb_target`: the framebuffer the view is presented into encodes sRGB itself.
   // `modules`: the targets of light field modules (a positions texture for Algorithm 2, the
   // module's uniform block, the LIGHTFIELD_MODULES programs).
-  // `follow_motion`: the G-buffer gets a motion target and the temporal pass follows it (an animated scene;
-  // see motion_attached()).
-  bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, double scene_radius, bool srgb_target,
-                 std::string& error, bool modules = false, bool follow_motion = false);
+  // What the scene asks of them: its radius (the AO radius), whether it has lights of its own (the
+  // present variant) and whether it moves (a motion target, follows_motion()).
+  bool configure(Programs& programs, const gl::Caps& caps, const FrameSettings& settings, const SceneGpu& scene, bool srgb_target,
+                 std::string& error, bool modules = false);
   // Forgets the AO history and the prepass measurement (a new scene or a camera cut).
   void reset_history();
 

@@ -40,6 +40,12 @@ mat4 joint_matrix(int index) {
   return transpose(mat4(texelFetch(u_joint_matrices, at, 0), texelFetch(u_joint_matrices, at + ivec2(1, 0), 0),
                         texelFetch(u_joint_matrices, at + ivec2(2, 0), 0), vec4(0.0, 0.0, 0.0, 1.0)));
 }
+
+// The vertex's four joints blended, from the joints that start at `base` in the texture.
+mat4 skin_matrix(int base) {
+  return a_joint_weights.x * joint_matrix(base + int(a_joints.x)) + a_joint_weights.y * joint_matrix(base + int(a_joints.y)) +
+         a_joint_weights.z * joint_matrix(base + int(a_joints.z)) + a_joint_weights.w * joint_matrix(base + int(a_joints.w));
+}
 #endif
 
 #ifdef MOTION
@@ -65,10 +71,7 @@ void main() {
   vec3 tangent = a_tangent.xyz;
 #endif
 #ifdef SKINNED
-  mat4 skin = a_joint_weights.x * joint_matrix(u_joint_base + int(a_joints.x)) +
-              a_joint_weights.y * joint_matrix(u_joint_base + int(a_joints.y)) +
-              a_joint_weights.z * joint_matrix(u_joint_base + int(a_joints.z)) +
-              a_joint_weights.w * joint_matrix(u_joint_base + int(a_joints.w));
+  mat4 skin = skin_matrix(u_joint_base);
   position = (skin * vec4(position, 1.0)).xyz;
   // The blend's linear part for the normal too: exact for rotations and uniform scales, which is
   // what joints carry; the fragment stage normalises.
@@ -81,12 +84,7 @@ void main() {
 #ifdef MOTION
   vec3 previous = a_previous_position;
 #ifdef SKINNED
-  int previous_base = u_joint_base + (textureSize(u_joint_matrices, 0).y / 2) * 64;
-  mat4 previous_skin = a_joint_weights.x * joint_matrix(previous_base + int(a_joints.x)) +
-                       a_joint_weights.y * joint_matrix(previous_base + int(a_joints.y)) +
-                       a_joint_weights.z * joint_matrix(previous_base + int(a_joints.z)) +
-                       a_joint_weights.w * joint_matrix(previous_base + int(a_joints.w));
-  previous = (previous_skin * vec4(previous, 1.0)).xyz;
+  previous = (skin_matrix(u_joint_base + (textureSize(u_joint_matrices, 0).y / 2) * 64) * vec4(previous, 1.0)).xyz;
 #endif
   v_view_motion = (u_previous_model_view * vec4(previous, 1.0)).xyz - view.xyz;
 #endif

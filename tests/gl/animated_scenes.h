@@ -1,6 +1,8 @@
 #pragma once
 // Small animated scenes the animation and motion tests share.
+#include "render/settings.h"
 #include "scene/animation.h"
+#include "scene/camera.h"
 #include "scene/procedural.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -9,6 +11,24 @@
 #include <memory>
 
 namespace test {
+
+constexpr int kAnimatedSize = 96;
+
+// A small frame with GL errors checked after each pass.
+inline render::FrameSettings small_animated_frame() {
+  render::FrameSettings settings;
+  settings.width = settings.height = kAnimatedSize;
+  settings.check_errors = true;
+  return settings;
+}
+
+// Looking along -Z from `elevation_deg` above the horizon.
+inline scene::Framing from_the_front(double elevation_deg) {
+  scene::Framing framing;
+  framing.azimuth_deg = 0.0;
+  framing.elevation_deg = elevation_deg;
+  return framing;
+}
 
 // Two joints: 0 at the origin, 1 half a unit above it, which the animation "tilt" turns 50 degrees
 // about +Z over a second (LINEAR).

@@ -11,13 +11,11 @@ namespace {
 
 using test::Harness;
 
-constexpr int kSize = 96;
+using test::from_the_front;
+constexpr int kSize = test::kAnimatedSize;
 
 render::FrameSettings small_frame() {
-  render::FrameSettings settings;
-  settings.width = settings.height = kSize;
-  settings.check_errors = true;
-  return settings;
+  return test::small_animated_frame();
 }
 
 // For comparing shapes: without temporal accumulation the frame after a pose is that pose's alone
@@ -26,13 +24,6 @@ render::FrameSettings one_frame_ao() {
   render::FrameSettings settings = small_frame();
   settings.temporal = false;
   return settings;
-}
-
-scene::Framing from_the_front(double elevation_deg) {
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = elevation_deg;
-  return framing;
 }
 
 // The pixel where `world` shows in the last frame: its red, and its red less its green (a red

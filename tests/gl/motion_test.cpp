@@ -13,22 +13,17 @@ namespace {
 
 using test::Harness;
 
-constexpr int kSize = 96;
+constexpr int kSize = test::kAnimatedSize;
 
 render::FrameSettings motion_frame() {
-  render::FrameSettings settings;
-  settings.width = settings.height = kSize;
-  settings.check_errors = true;
+  render::FrameSettings settings = test::small_animated_frame();
   settings.ao_settings.half_resolution = false;  // AO texels are pixels
   settings.reuse_static_ao = false;
   return settings;
 }
 
 scene::Framing from_the_front() {
-  scene::Framing framing;
-  framing.azimuth_deg = 0.0;
-  framing.elevation_deg = 30.0;
-  return framing;
+  return test::from_the_front(30.0);
 }
 
 // A white floor and a red box of `box` on it, carried by node 0 of `rig`.

@@ -61,7 +61,7 @@ bool LightFieldOutput::configure(const FrameSettings& frame_settings, const Scen
   // is another view's.
   settings.temporal = false;
   if (!targets_.configure(programs_, caps, settings, scene, false, error, modules) ||
-      !prepare_material_programs(programs_, scene, settings, modules, false, error))
+      !prepare_material_programs(programs_, scene, targets_, false, error))
     return false;
   if (!programs_.build_interleave(error)) return false;  // also the copy present() uses
   background_ = settings.background;

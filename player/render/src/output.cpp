@@ -5,7 +5,7 @@ namespace render {
 bool ViewOutput::configure(const FrameSettings& settings, const SceneGpu& scene, bool srgb_target, std::string& error) {
   adjustment_.clear();
   return targets_.configure(programs_, caps_, settings, scene, srgb_target, error) &&
-         prepare_material_programs(programs_, scene, settings, false, srgb_target, error);
+         prepare_material_programs(programs_, scene, targets_, srgb_target, error);
 }
 
 void ViewOutput::render(const OutputFrame& frame) {

@@ -257,9 +257,12 @@ bool follows_motion(const SceneGpu& scene, const FrameSettings& settings, bool m
   return draw_buffers >= 5;
 }
 
-bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
-                               bool srgb_target, std::string& error) {
-  const unsigned motion = follows_motion(scene, settings, modules) ? features::motion : 0;
+bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const ViewTargets& targets, bool srgb_target,
+                               std::string& error) {
+  const FrameSettings& settings = targets.settings();
+  const bool modules = targets.modules();
+  // The variants draw_scene() picks: with the motion bit exactly where the targets have a motion target.
+  const unsigned motion = targets.motion_attached() ? features::motion : 0;
   for (const scene::Material& material : scene.materials())
     if (!programs.prepare_gbuffer(material_features(material, settings.untextured_variant) | motion, modules, error))
       return false;

@@ -47,11 +47,12 @@ struct PassContext {
 // buffers; never a light field module's.
 bool follows_motion(const SceneGpu& scene, const FrameSettings& settings, bool modules);
 
-// Compiles the G-buffer variants the scene's materials need (Programs::prepare_gbuffer), and the
-// forward variants of its blended ones into a target that encodes sRGB itself or not, so the
-// frames that draw it compile nothing.
-bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const FrameSettings& settings, bool modules,
-                               bool srgb_target, std::string& error);
+// Compiles the G-buffer variants the scene's materials need in `targets` (configured for the scene:
+// their settings, module kind and motion target; Programs::prepare_gbuffer), and the forward variants
+// of its blended ones into a target that encodes sRGB itself or not, so the frames that draw it
+// compile nothing.
+bool prepare_material_programs(Programs& programs, const SceneGpu& scene, const ViewTargets& targets, bool srgb_target,
+                               std::string& error);
 
 void depth_prepass(const PassContext& context);
 void gbuffer_pass(const PassContext& context, bool after_prepass);

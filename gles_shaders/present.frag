@@ -8,6 +8,8 @@
 // framebuffer is sRGB and encodes on write. OUTPUT (OUTPUT_COLOR by default) is a compile-time
 // choice: llvmpipe runs every side of a branch on a uniform, and the debug outputs' sRGB decoding
 // made the shaded image cost half as much again (21 against 15 ms at 1024x768).
+// PRESENT_BOUNDS (fullscreen.vert): drawn over the rectangle of covered_bounds.comp only;
+// BACKGROUND_ONLY: the background, drawn over the whole view before it.
 #include "common.glsl"
 #include "shared_layout.glsl"
 #include "upsample.glsl"
@@ -48,6 +50,11 @@ vec4 data(vec3 value) {
 }
 
 void main() {
+#ifdef BACKGROUND_ONLY
+  // The view outside the rectangle that holds the surfaces (PRESENT_BOUNDS), as the shading writes it.
+  fragment = shaded(composite.background.rgb * composite.fade);
+  return;
+#endif
   ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(composite.viewport_x, composite.viewport_y);
   float fade = composite.fade;
   float depth = texelFetch(u_linear_depth, pixel, 0).r;

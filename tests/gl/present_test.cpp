@@ -193,6 +193,46 @@ TEST_P(Present, FadeDarkensTheWholeImage) {
   EXPECT_EQ(darker, lit);
 }
 
+// The present pass shades only the bands of the view whose tiles hold a surface and fills the rest
+// with the background (FrameSettings::present_tiles): the picture is the one shading every pixel
+// gives, byte for byte, in every output, at sizes that are no multiple of the 16-pixel tiles or the
+// 128-pixel bands, with the scene framed, small, filling the view, at its edge and out of it.
+TEST_P(Present, ShadingOnlyTheBandsWithSurfacesLeavesThePictureAsItWas) {
+  struct Case {
+    const char* what;
+    int width, height;
+    double distance;
+    double sideways;  // the camera's target moved to its right, in multiples of its distance
+  };
+  for (const Case c : {Case{"framed", 150, 97, 1.0, 0.0}, Case{"small", 200, 300, 6.0, 0.0}, Case{"filling", 131, 77, 0.35, 0.0},
+                       Case{"at the edge", 170, 140, 1.0, 0.45}, Case{"out of view", 90, 60, 1.0, -4.0}}) {
+    for (const render::Picture output :
+         {render::Picture::color, render::Picture::ao, render::Picture::normal, render::Picture::depth}) {
+      auto picture = [&](bool bands) {
+        render::FrameSettings settings = settings_for(c.width, c.height);
+        settings.present_tiles = bands;
+        settings.output = output;
+        scene::Framing framing;
+        framing.distance = c.distance;
+        Harness h;
+        EXPECT_TRUE(h.start(GetParam(), "builtin:demo", settings, framing));
+        scene::Camera camera = h.camera;
+        const glm::dvec3 forward = camera.target - camera.eye;
+        camera.target += glm::normalize(glm::cross(forward, camera.up)) * (c.sideways * glm::length(forward));
+        h.renderer.render(camera);
+        EXPECT_EQ(h.renderer.gl_error(), "");
+        return h.renderer.read_color();
+      };
+      const std::vector<uint8_t> shaded_everywhere = picture(false), shaded_in_bands = picture(true);
+      size_t background = 0;
+      for (size_t i = 0; i + 3 < shaded_everywhere.size(); i += 4)
+        background += shaded_everywhere[i] == shaded_everywhere[0] && shaded_everywhere[i + 1] == shaded_everywhere[1] ? 1 : 0;
+      EXPECT_EQ(shaded_in_bands, shaded_everywhere) << c.what << ", " << render::name(output) << ", " << background
+                                                    << " background pixels of " << shaded_everywhere.size() / 4;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Platforms, Present, ::testing::Values("egl", "osmesa"), test::platform_name);
 
 }  // namespace

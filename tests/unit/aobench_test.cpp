@@ -234,6 +234,7 @@ TEST(SettingsCodec, EveryKeyAcceptsItsRangeAndRefusesJustOutsideIt) {
       {"reuse-ao", {"on", "off"}, {"auto"}, "on|off"},
       {"temporal", {"on", "off"}, {"1"}, "on|off"},
       {"motion-vectors", {"on", "off"}, {"yes"}, "on|off"},
+      {"present-tiles", {"on", "off"}, {"tiles"}, "on|off"},
       {"ao-strength", {"0", "1", "1.5", "8"}, {"-0.5", "8.5", "inf", "nan", "x", ""}, "0..8"},
       {"history", {"1", "255", "32"}, {"0", "256", "-1", "8.0", ""}, "1..255"},
       {"prepass", {"on", "off", "auto"}, {"maybe"}, "on|off|auto"},

@@ -162,6 +162,13 @@ const Row kRows[] = {
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.motion_vectors); },
      [](const FrameSettings& s) { return on_off(s.motion_vectors); }},
+    {{"present-tiles",
+      "Shade only the screen tiles that hold a surface and fill the rest with the background (off: shade every pixel, to "
+      "measure it)",
+      "on|off"},
+     nullptr,
+     [](FrameSettings& s, std::string_view v) { return parse_on_off(v, s.present_tiles); },
+     [](const FrameSettings& s) { return on_off(s.present_tiles); }},
     {{"history", "Frames the temporal accumulation averages at most (8 at most while the camera moves)", "1..255"},
      nullptr,
      [](FrameSettings& s, std::string_view v) { return parse_int(v, 1, 255, s.history); },

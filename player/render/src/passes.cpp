@@ -418,6 +418,27 @@ bool ao_passes(const PassContext& context) {
   return true;
 }
 
+namespace {
+
+// covered_bounds.comp: per band of the view, the rectangle of tiles that holds the G-buffer's
+// surfaces, for the present draw. They start each frame empty.
+void find_covered_bounds(const PassContext& context) {
+  ViewTargets& targets = context.targets;
+  gl::api.BindBuffer(GL_SHADER_STORAGE_BUFFER, targets.covered_bounds.id());
+  gl::api.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(targets.empty_bounds.size() * sizeof(GLuint)),
+                        targets.empty_bounds.data());
+  gl::api.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  gl::api.UseProgram(context.programs.covered_bounds->id());
+  bind_texture(0, targets.linear_depth);
+  gl::api.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, targets.covered_bounds.id());
+  constexpr int kGroup = 8;  // covered_bounds.comp's local size
+  gl::api.DispatchCompute(static_cast<GLuint>((targets.tile_columns() + kGroup - 1) / kGroup),
+                          static_cast<GLuint>((targets.tile_rows() + kGroup - 1) / kGroup), 1);
+  gl::api.MemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+}  // namespace
+
 void present_pass(const PassContext& context, const PresentTarget& target, float fade) {
   ViewTargets& targets = context.targets;
   const FrameSettings& settings = targets.settings();
@@ -427,12 +448,18 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   detail::update_uniform_buffer(targets.composite_ubo, &composite, sizeof composite);
   targets.last_inverse_far = composite.inverse_far;
 
+  if (targets.present_tiles()) find_covered_bounds(context);
   gl::api.BindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
   gl::api.Viewport(target.x, target.y, settings.width, settings.height);
   gl::api.Disable(GL_DEPTH_TEST);
   gl::api.Disable(GL_CULL_FACE);
-  gl::api.UseProgram(targets.present_program->id());  // chosen for target.srgb at configure
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_COMPOSITE_PARAMS, targets.composite_ubo.id());
+  if (targets.present_tiles()) {
+    gl::api.UseProgram(targets.present_background->id());
+    gl::api.BindVertexArray(context.programs.empty_vertex_array.id());
+    gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  gl::api.UseProgram(targets.present_program->id());  // chosen for target.srgb at configure
   gl::api.BindBufferBase(GL_UNIFORM_BUFFER, BINDING_LIGHT_PARAMS, context.scene.lights().id());
   bind_texture(0, targets.albedo);
   bind_texture(1, targets.normal);
@@ -442,8 +469,16 @@ void present_pass(const PassContext& context, const PresentTarget& target, float
   gl::api.ActiveTexture(GL_TEXTURE5);
   gl::api.BindTexture(GL_TEXTURE_CUBE_MAP, context.scene.environment().specular.id());
   bind_texture(6, context.programs.brdf_lut);
-  gl::api.BindVertexArray(context.programs.empty_vertex_array.id());
-  gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
+  if (targets.present_tiles()) {
+    constexpr float kTile = Programs::kPresentTile;
+    gl::api.Uniform2f(targets.present_tile_scale, 2.0f * kTile / static_cast<float>(settings.width),
+                      2.0f * kTile / static_cast<float>(settings.height));
+    gl::api.BindVertexArray(targets.bounds_vertex_array.id());
+    gl::api.DrawArraysInstanced(GL_TRIANGLES, 0, 6, targets.tile_bands());
+  } else {
+    gl::api.BindVertexArray(context.programs.empty_vertex_array.id());
+    gl::api.DrawArrays(GL_TRIANGLES, 0, 3);
+  }
   gl::api.BindVertexArray(0);
   // The debug outputs show the G-buffer and the AO, which blended surfaces are not part of.
   if (!view.module && settings.output == Picture::color && !context.scene.blended_draws().empty())

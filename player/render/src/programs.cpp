@@ -99,8 +99,13 @@ bool Programs::build(gl::Session& session, std::string& error) {
             build_compute(cache, "blur.comp", "#define BILATERAL 1\n#define DENOISE 1\n", {"u_source", "u_normal"}, error)) ||
       !(temporal =
             build_compute(cache, "temporal.comp", "", {"u_current", "u_normal", "u_history", "u_history_normal"}, error)) ||
-      !present(Picture::color, true, false, error) || !present(Picture::color, false, false, error))
+      !build_covered_bounds(error))
     return false;
+  // The default frame's present programs: its surfaces' rectangle and background, into either kind of
+  // framebuffer.
+  for (const bool srgb : {true, false})
+    for (const PresentDraw draw : {PresentDraw::bounds, PresentDraw::background})
+      if (!present(Picture::color, srgb, false, error, draw)) return false;
   depth_chain_source_level = gl::uniform(*depth_chain, "u_source_level");
   gl::api.UseProgram(0);
   empty_vertex_array = gl::make_vertex_array();
@@ -200,17 +205,35 @@ bool Programs::prepare_forward(unsigned feature_bits, bool srgb, std::string& er
   return true;
 }
 
-const gl::Program* Programs::present(Picture output, bool srgb, bool scene_lights, std::string& error) {
-  const gl::Program*& program = present_[static_cast<size_t>(output)][srgb ? 1 : 0][scene_lights ? 1 : 0];
+const gl::Program* Programs::present(Picture output, bool srgb, bool scene_lights, std::string& error, PresentDraw draw) {
+  if (draw == PresentDraw::background) {
+    output = Picture::color;
+    scene_lights = false;
+  }
+  const gl::Program*& program =
+      present_[static_cast<size_t>(draw)][static_cast<size_t>(output)][srgb ? 1 : 0][scene_lights ? 1 : 0];
   if (program == nullptr) {
     const std::string defines = "#define OUTPUT " + std::to_string(static_cast<int>(output)) + "\n" +
-                                (srgb ? "" : "#define ENCODE_SRGB 1\n") + (scene_lights ? "" : "#define NO_SCENE_LIGHTS 1\n");
+                                (srgb ? "" : "#define ENCODE_SRGB 1\n") + (scene_lights ? "" : "#define NO_SCENE_LIGHTS 1\n") +
+                                (draw == PresentDraw::bounds       ? "#define PRESENT_BOUNDS 1\n"
+                                 : draw == PresentDraw::background ? "#define BACKGROUND_ONLY 1\n"
+                                                                   : "");
     program =
         build_fullscreen(*cache_, "present.frag", defines,
                          {"u_albedo", "u_normal", "u_linear_depth", "u_ao", "u_material", "u_specular", "u_brdf_lut"}, error);
     gl::api.UseProgram(0);
   }
   return program;
+}
+
+bool Programs::build_covered_bounds(std::string& error) {
+  if (covered_bounds != nullptr) return true;
+  covered_bounds = build_compute(
+      *cache_, "covered_bounds.comp",
+      "#define TILE_SIZE " + std::to_string(kPresentTile) + "\n#define BAND_TILES " + std::to_string(kPresentBandTiles) + "\n",
+      {"u_linear_depth"}, error);
+  gl::api.UseProgram(0);
+  return covered_bounds != nullptr;
 }
 
 const gl::Program* Programs::ssao(ssao::Estimator estimator, ssao::Precision precision, std::string& error, bool modules) {

@@ -32,8 +32,17 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
   if (ssao_program == nullptr) return false;
   ssao_inverse_far = programs.ssao_inverse_far(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
   ssao_defines = programs.ssao_defines(settings.ao_settings.estimator, settings.ao_settings.precision, modules);
-  present_program = programs.present(settings.output, srgb_target, scene.light_count() > 0, error);
+  const bool tiles = settings.present_tiles && !modules;
+  present_program = programs.present(settings.output, srgb_target, scene.light_count() > 0, error,
+                                     tiles ? PresentDraw::bounds : PresentDraw::fullscreen);
   if (present_program == nullptr) return false;
+  present_background = nullptr;
+  present_tile_scale = -1;
+  if (tiles) {
+    present_background = programs.present(settings.output, srgb_target, false, error, PresentDraw::background);
+    if (present_background == nullptr || !programs.build_covered_bounds(error)) return false;
+    present_tile_scale = gl::uniform(*present_program, "u_tile_scale");
+  }
   if (with_motion && !programs.build_temporal_motion(error)) return false;
   settings_ = settings;
   reset_history();
@@ -118,6 +127,23 @@ bool ViewTargets::configure(Programs& programs, const gl::Caps& caps, const Fram
     detail::update_uniform_buffer(ssao_ubo, &ssao_params, sizeof ssao_params);
     for (int direction = 0; direction < 2; ++direction)
       detail::update_uniform_buffer(blur_ubo[direction], &blur_params[direction], sizeof blur_params[direction]);
+  }
+  if (!tiles) {
+    covered_bounds = gl::Buffer{};
+    bounds_vertex_array = gl::VertexArray{};
+  } else if (reallocate || !covered_bounds) {
+    empty_bounds.clear();
+    for (int band = 0; band < tile_bands(); ++band) empty_bounds.insert(empty_bounds.end(), {~0u, ~0u, 0u, 0u});
+    covered_bounds = gl::make_buffer();
+    gl::api.BindBuffer(GL_ARRAY_BUFFER, covered_bounds.id());
+    gl::api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(empty_bounds.size() * sizeof(GLuint)), nullptr, GL_DYNAMIC_COPY);
+    bounds_vertex_array = gl::make_vertex_array();
+    gl::api.BindVertexArray(bounds_vertex_array.id());
+    gl::api.EnableVertexAttribArray(0);
+    gl::api.VertexAttribIPointer(0, 4, GL_UNSIGNED_INT, 0, nullptr);
+    gl::api.VertexAttribDivisor(0, 1);  // a band's rectangle for each instance's six vertices
+    gl::api.BindVertexArray(0);
+    gl::api.BindBuffer(GL_ARRAY_BUFFER, 0);
   }
   // The history is allocated only where it is used (light field outputs never accumulate).
   for (int i = 0; i < 2; ++i) {

@@ -63,6 +63,8 @@ namespace gl {
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                      \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute) X(PFNGLMEMORYBARRIERPROC, MemoryBarrier) \
   X(PFNGLDRAWELEMENTSPROC, DrawElements) X(PFNGLFINISHPROC, Finish)                   \
+  X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor) X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced) \
+  X(PFNGLUNIFORM2FPROC, Uniform2f)                                                    \
   X(PFNGLGENQUERIESPROC, GenQueries) X(PFNGLDELETEQUERIESPROC, DeleteQueries)         \
   X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)
 

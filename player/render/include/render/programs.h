@@ -58,6 +58,9 @@ enum TextureUnit {
   unit_joints
 };
 
+// How the present pass covers its view (Programs::present).
+enum class PresentDraw { fullscreen, bounds, background };
+
 class Programs {
  public:
   // Builds what every frame needs (or finds it in the session). Returns false and says why (the file,
@@ -127,9 +130,18 @@ class Programs {
   // for a scene with lights of its own (`scene_lights`) or none (NO_SCENE_LIGHTS: llvmpipe paid 5 of
   // 36 ms at 1024x768 for the loop over no lights). The shaded image's for a scene without lights
   // are built by build(); the others on first use.
-  const gl::Program* present(Picture output, bool srgb, bool scene_lights, std::string& error);
-  gl::VertexArray empty_vertex_array;  // the present pass has no attributes; core GL still wants a VAO
-  gl::Texture white;                   // stands in for a missing base colour texture when untextured_variant is off
+  // `draw`: over the whole view (fullscreen.vert's one triangle), over the rectangle of
+  // covered_bounds.comp (PRESENT_BOUNDS), or the background alone (BACKGROUND_ONLY, whose output and
+  // lights make no difference: the color variant without lights stands for all).
+  const gl::Program* present(Picture output, bool srgb, bool scene_lights, std::string& error,
+                             PresentDraw draw = PresentDraw::fullscreen);
+  // covered_bounds.comp (the rectangle of tiles of kPresentTile pixels that holds the view's
+  // surfaces), compiled on first call.
+  bool build_covered_bounds(std::string& error);
+  const gl::Program* covered_bounds = nullptr;
+  static constexpr int kPresentTile = 16, kPresentBandTiles = 8;  // bands of 128 pixels
+  gl::VertexArray empty_vertex_array;                             // the present pass has no attributes; core GL still wants a VAO
+  gl::Texture white;  // stands in for a missing base colour texture when untextured_variant is off
 
  private:
   gl::ProgramCache* cache_ = nullptr;
@@ -138,7 +150,7 @@ class Programs {
   template <typename T>
   using PerVariant = std::array<std::array<std::array<T, std::size(ssao::kPrecisions)>, std::size(ssao::kEstimators)>, 2>;
   PerVariant<const gl::Program*> ssao_{};
-  std::array<std::array<std::array<const gl::Program*, 2>, 2>, std::size(kPictureNames)> present_{};
+  std::array<std::array<std::array<std::array<const gl::Program*, 2>, 2>, std::size(kPictureNames)>, 3> present_{};
   std::array<std::array<RasterProgram, features::count>, 2> gbuffer_{};
   std::array<std::array<RasterProgram, features::motion>, 2> forward_{};  // blended draws write no motion
   std::array<std::array<RasterProgram, 2>, 2> skinned_depth_{};

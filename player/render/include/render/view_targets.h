@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace render {
 
@@ -69,6 +70,20 @@ class ViewTargets {
   const gl::Program* ssao_program = nullptr;
   std::string_view ssao_defines;  // the #defines ssao_program was compiled with (its variant)
   const gl::Program* present_program = nullptr;
+  // The rectangles of the view's bands that hold its surfaces (FrameSettings::present_tiles), as
+  // covered_bounds.comp leaves them (four uints each, in tiles) and the present program reads them
+  // (an attribute of bounds_vertex_array, per instance), what they are reset to each frame, the
+  // background program drawn before them and the tiles' scale uniform. Empty where the present
+  // pass covers the whole view.
+  gl::Buffer covered_bounds;
+  gl::VertexArray bounds_vertex_array;
+  std::vector<GLuint> empty_bounds;
+  const gl::Program* present_background = nullptr;
+  GLint present_tile_scale = -1;
+  bool present_tiles() const { return static_cast<bool>(covered_bounds); }
+  int tile_columns() const { return (width_ + Programs::kPresentTile - 1) / Programs::kPresentTile; }
+  int tile_rows() const { return (height_ + Programs::kPresentTile - 1) / Programs::kPresentTile; }
+  int tile_bands() const { return (tile_rows() + Programs::kPresentBandTiles - 1) / Programs::kPresentBandTiles; }
   GLint ssao_inverse_far = -1;
   int depth_levels = 1;
   float base_radius = 0.0f;

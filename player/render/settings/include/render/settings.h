@@ -47,6 +47,11 @@ struct FrameSettings {
   // G-buffer writes from the previous pose), not the camera's alone. Off only to measure what it
   // saves (aobench --ghosting): history is then found where the camera alone puts it.
   bool motion_vectors = true;
+  // The present pass shades only the tiles of the view that hold a surface (a compute pass lists
+  // them from the G-buffer's depth) and fills the rest with the background: llvmpipe shades every
+  // pixel a draw covers, background or not. Off only to measure what it saves; light field modules
+  // always shade their whole (small) view.
+  bool present_tiles = true;
   // The shaded image's visibility is (1 - AO)^ao_strength; the AO itself (the AO view, dumps,
   // aobench) is never changed by it.
   float ao_strength = 1.0f;

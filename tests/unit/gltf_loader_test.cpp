@@ -67,6 +67,46 @@ TEST_F(GltfLoader, LoadsATriangleWithNodeTransforms) {
   EXPECT_NEAR(loaded.bounds.max.y, 2.0, 1e-12);
 }
 
+// A node's rotation is the unit quaternion written (x, y, z, w) (glTF 2.0, node.rotation), applied
+// after its scale and before its translation, and a child's transform inside its parent's: a model
+// with turned nodes stands as its author turned it. The expected points are worked out by hand.
+TEST_F(GltfLoader, ANodesRotationIsTheQuaternionXyzwBetweenItsScaleAndItsTranslation) {
+  const double s = std::sqrt(0.5);
+  struct Case {
+    const char* what;
+    json nodes;
+    std::vector<glm::dvec3> expected;  // where the triangle's corners (0,0,0), (1,0,0), (0,1,0) land
+  };
+  const Case cases[] = {
+      {"a quarter turn about +Y, doubled and moved along +X",
+       {{{"mesh", 0}, {"rotation", {0, s, 0, s}}, {"scale", {2, 2, 2}}, {"translation", {10, 0, 0}}}},
+       {{10, 0, 0}, {10, 0, -2}, {10, 2, 0}}},
+      {"a quarter turn about +X", {{{"mesh", 0}, {"rotation", {s, 0, 0, s}}}}, {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}},
+      {"a child moved along +X inside a parent turned a quarter about +Z",
+       {{{"children", {1}}, {"rotation", {0, 0, s, s}}}, {{"mesh", 0}, {"translation", {1, 0, 0}}}},
+       {{0, 1, 0}, {0, 2, 0}, {-1, 1, 0}}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    json doc = triangle();
+    doc["nodes"] = c.nodes;
+    doc["scenes"] = {{{"nodes", {0}}}};
+    const scene::Scene loaded = load_ok(write(doc));
+    ASSERT_EQ(loaded.instances.size(), 1u);
+    const scene::Instance& instance = loaded.instances[0];
+    const scene::Mesh& mesh = loaded.meshes.at(static_cast<size_t>(instance.mesh));
+    std::vector<bool> found(c.expected.size(), false);
+    for (const scene::Vertex& v : mesh.vertices) {
+      const glm::dvec3 world(instance.world * glm::dvec4(glm::dvec3(v.position), 1.0));
+      bool matched = false;
+      for (size_t k = 0; k < c.expected.size(); ++k)
+        if (glm::length(world - c.expected[k]) < 1e-6) matched = found[k] = true;
+      EXPECT_TRUE(matched) << "a corner at (" << world.x << ", " << world.y << ", " << world.z << ")";
+    }
+    for (size_t k = 0; k < found.size(); ++k) EXPECT_TRUE(found[k]) << "no corner at expected point " << k;
+  }
+}
+
 // The source vertex of every output index. Without NORMAL the loader gives each triangle its own
 // vertices (flat normals), so the vertex is told by its position: vertex v of vertex_row() lies at x = v.
 std::vector<uint32_t> source_vertices(const scene::Mesh& mesh) {

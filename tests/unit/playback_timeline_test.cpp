@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <set>
 
 #include "playback/timeline.h"
@@ -323,6 +324,26 @@ TEST(Timeline, ShuffleIsDeterministicAndAPermutationPerPass) {
     distinct.insert(a[p]);
   }
   EXPECT_GE(distinct.size(), 5u);  // a new order every pass
+}
+
+// Whatever the seed and the playlist's length (3 items or more), a shuffled playlist never shows the
+// same item twice in a row where one pass ends and the next begins, and each pass still shows every
+// item once: the first item of a new pass is swapped with its second when it is the one just shown.
+TEST(Timeline, AShuffledPassNeverBeginsWithTheItemThePassBeforeEndedOn) {
+  for (int n : {3, 4, 5, 8}) {
+    for (std::uint64_t seed = 0; seed < 60; ++seed) {
+      const auto shown = passes(seed, n, 12);
+      for (std::size_t p = 0; p < shown.size(); ++p) {
+        SCOPED_TRACE("n " + std::to_string(n) + ", seed " + std::to_string(seed) + ", pass " + std::to_string(p));
+        std::vector<int> sorted = shown[p];
+        std::sort(sorted.begin(), sorted.end());
+        std::vector<int> every(static_cast<std::size_t>(n));
+        std::iota(every.begin(), every.end(), 0);
+        ASSERT_EQ(sorted, every);
+        if (p > 0) ASSERT_NE(shown[p].front(), shown[p - 1].back()) << "the same item twice in a row";
+      }
+    }
+  }
 }
 
 TEST(Timeline, WallclockPlayersAgreeWithoutTalking) {

@@ -4,6 +4,7 @@
 #include "harness.h"
 
 #include <OpenImageIO/imageio.h>
+#include <SDL.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -128,6 +129,53 @@ TEST(Window, EventsDrainWithoutBlocking) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
   EXPECT_EQ(h.platform->drain_events({}), 0u);
   EXPECT_TRUE(h.platform->present());
+}
+
+// Keys reach a board file's button mapping by the names the board file writes for them: SDL's name
+// in lower case with '-' for a space ("left-shift", "keypad-1"), the names the evdev keyboards give
+// the same keys on a board (hal's board_key_name), so one board file works on both. A held key's
+// auto-repeat is not a press; its release is a key_release.
+TEST(Window, KeysArriveByTheNamesBoardFilesGiveThem) {
+  SKIP_WITHOUT_DISPLAY();
+  Harness h;
+  std::string error;
+  ASSERT_TRUE(h.open("window", settings_for(160, 120), error)) << error;
+  platform::Event events[8];
+  while (h.platform->drain_events(events) > 0) {
+  }
+  auto send = [](Uint32 type, SDL_Keycode key, bool repeat) {
+    SDL_Event event{};
+    event.type = type;
+    event.key.type = type;
+    event.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
+    event.key.repeat = repeat ? 1 : 0;
+    event.key.keysym.sym = key;
+    event.key.keysym.scancode = SDL_GetScancodeFromKey(key);
+    return SDL_PushEvent(&event) == 1;
+  };
+  auto received = [&](platform::EventType type) {
+    std::vector<std::string> keys;
+    for (int round = 0; round < 20; ++round) {
+      const std::size_t count = h.platform->drain_events(events);
+      for (std::size_t i = 0; i < count; ++i)
+        if (events[i].type == type) keys.emplace_back(events[i].key);
+      if (!keys.empty() && count == 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return keys;
+  };
+  const std::pair<SDL_Keycode, const char*> keys[] = {
+      {SDLK_SPACE, "space"},   {SDLK_LSHIFT, "left-shift"}, {SDLK_RCTRL, "right-ctrl"},
+      {SDLK_KP_1, "keypad-1"}, {SDLK_RETURN, "return"},     {SDLK_n, "n"},
+      {SDLK_F5, "f5"},         {SDLK_PAGEDOWN, "pagedown"}};
+  for (const auto& [key, name] : keys) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(send(SDL_KEYDOWN, key, false)) << SDL_GetError();
+    ASSERT_TRUE(send(SDL_KEYDOWN, key, true)) << SDL_GetError();  // auto-repeat while held
+    EXPECT_EQ(received(platform::EventType::key_press), std::vector<std::string>{name});
+    ASSERT_TRUE(send(SDL_KEYUP, key, false)) << SDL_GetError();
+    EXPECT_EQ(received(platform::EventType::key_release), std::vector<std::string>{name});
+  }
 }
 
 TEST(Window, AResizeRequestArrivesAsAResizedEvent) {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "button_logic.h"
 #include "hal/board.h"
 #include "hal/mock.h"
 
@@ -75,6 +76,33 @@ TEST(Buttons, LongPressFiresOnceAtItsDeadlineWhileHeld) {
                                                    {"check", ButtonAction::release, 1500},
                                                    {"check", ButtonAction::press, 2000},
                                                    {"check", ButtonAction::release, 2300}}));
+}
+
+// A button already held down when the player starts (the line reads pressed at start-up) is not a
+// press: however long it stays down, no press, long press or repeat. Let go, its release is reported
+// (whoever tracks held buttons sees it up), and its next press is an ordinary one, long press and
+// repeats included.
+TEST(Buttons, AButtonHeldWhenThePlayerStartsDoesNothingUntilPressedAgain) {
+  detail::ButtonLogic logic({timing(10, 800, 300, 200)});
+  logic.set_initial(0, true);
+  auto events_until = [&](long long ms) {
+    logic.advance(milliseconds(ms));
+    std::vector<std::pair<ButtonAction, long long>> out;
+    std::array<ButtonEvent, 8> ev;
+    for (std::size_t n; (n = logic.drain(ev)) > 0;)
+      for (std::size_t i = 0; i < n; ++i)
+        out.emplace_back(ev[i].action, std::chrono::duration_cast<milliseconds>(ev[i].time).count());
+    return out;
+  };
+  EXPECT_TRUE(events_until(5000).empty());
+  EXPECT_EQ(logic.next_deadline(), Nanos::max()) << "nothing is pending for the held button";
+  logic.edge(0, false, milliseconds(6000));
+  logic.edge(0, true, milliseconds(7000));
+  using A = ButtonAction;
+  EXPECT_EQ(
+      events_until(7850),
+      (std::vector<std::pair<ButtonAction, long long>>{
+          {A::release, 6000}, {A::press, 7000}, {A::repeat, 7300}, {A::repeat, 7500}, {A::repeat, 7700}, {A::long_press, 7800}}));
 }
 
 TEST(Buttons, AutoRepeatStartsAfterDelayAndStopsOnRelease) {

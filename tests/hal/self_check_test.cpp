@@ -117,6 +117,35 @@ TEST(SelfCheck, PassFailMatrixAndMargin) {
   EXPECT_GT(worst_pass - best_fail, 0.1) << "threshold has too little room on one side";
 }
 
+// A screen that is mostly flat (a grey page with one picture on it) and shows the wrong picture must
+// fail: the comparison weighs each window by its contrast, so the flat windows, which look alike
+// whatever is shown, do not outvote the ones that can tell the pictures apart. Averaged plainly,
+// the page's flat windows carried the wrong picture past the threshold. The right picture passes.
+TEST(SelfCheck, AWrongPictureOnAMostlyFlatScreenFails) {
+  const FiducialLayout layout = FiducialLayout::for_display(kW, kH, 3);
+  auto page_with = [&](int scene) {
+    RgbImage page(kW, kH);
+    std::fill(page.pixels.begin(), page.pixels.end(), std::uint8_t{128});
+    // A picture of 128 x 96 in the middle of the page: about 5% of the screen.
+    const RgbImage picture = make_test_scene(kW, kH, scene, 2.0);
+    for (int y = kH / 2 - 48; y < kH / 2 + 48; ++y)
+      for (int x = kW / 2 - 64; x < kW / 2 + 64; ++x) std::copy_n(picture.at(x, y), 3, page.at(x, y));
+    return with_markers(page, layout);
+  };
+  const RgbImage presented = page_with(1);
+  DisplayChecker checker;
+  RgbImage capture;
+  synthesize_capture(presented, typical_camera_model(), 0, capture);
+  const SelfCheckResult right = checker.check(presented, layout, capture);
+  EXPECT_TRUE(right.passed) << right.reason;
+  for (int other : {2, 4}) {
+    synthesize_capture(page_with(other), typical_camera_model(), 0, capture);
+    const SelfCheckResult wrong = checker.check(presented, layout, capture);
+    EXPECT_TRUE(wrong.registered) << wrong.reason;
+    EXPECT_FALSE(wrong.passed) << "scene " << other << " shown for scene 1: SSIM " << wrong.score;
+  }
+}
+
 TEST(SelfCheck, MarkersUseTheCheckSequence) {
   const auto a = FiducialLayout::for_display(1920, 1080, 0), b = FiducialLayout::for_display(1920, 1080, 1);
   EXPECT_EQ(a.first_id, 0);

@@ -63,6 +63,9 @@ bool apply_frame_options(const std::string& size, int& width, int& height, const
 int main(int argc, char** argv) {
   CLI::App cli{"player: a kiosk glTF player with screen-space ambient occlusion on OpenGL ES 3.1 compute"};
 
+  const std::string shader_cache_help =
+      "Folder that keeps compiled shaders between runs (Mesa's cache and program binaries), or off; default "
+      "$CACHE_DIRECTORY/shaders (the service), else $XDG_CACHE_HOME or ~/.cache, /ssao-player/shaders";
   app::RenderOptions render;
   std::string size = "1024x768";
   auto* render_cmd = cli.add_subcommand("render", "Render one frame of SCENE to a PNG and print per-pass GPU times");
@@ -114,6 +117,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--modules-dir", render.modules_dir,
                          "With --display: one PNG per module (module-K.png) or view (view-K.png)");
   render_cmd->add_option("--native", render.native_output, "With a quilt --display: the interleaved native panel image (PNG)");
+  render_cmd->add_option("--shader-cache", render.shader_cache, shader_cache_help);
   render_cmd->add_flag("--view-probe", render.view_probe,
                        "With --display: draw view k as the flat grey (k, k, k) instead of the scene, to check the interleave");
 
@@ -205,6 +209,7 @@ int main(int argc, char** argv) {
   play_cmd->add_option("--log", play.log_file,
                        "Write a line per frame: item, state, LED patterns, button actions, frame time, resident memory");
   play_cmd->add_option("--camera-script", play.camera_script, "Mock camera: lines of `t_ms unplug|replug` (with --hal mock)");
+  play_cmd->add_option("--shader-cache", play.shader_cache, shader_cache_help);
   SettingOptions play_settings;
   play_settings.add_to(*play_cmd, play.settings);
   cli.require_subcommand(0, 1);

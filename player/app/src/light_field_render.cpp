@@ -105,7 +105,7 @@ int run_render_light_field(const RenderOptions& options, std::ostream& out, std:
   }
 
   // 64x64: every view renders into a framebuffer of its own.
-  const auto session = open_render_session(options.platform, 64, 64, err);
+  const auto session = open_render_session(options.platform, 64, 64, err, options.shader_cache);
   if (!session) return 1;
   const gl::Caps& caps = session->caps();
   scene::Scene scene;

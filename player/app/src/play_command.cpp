@@ -24,6 +24,7 @@
 #include "play/self_check_session.h"
 #include "play/status_reporter.h"
 #include "render/renderer.h"
+#include "shader_cache.h"
 
 #include <filesystem>
 #include <fstream>
@@ -166,11 +167,14 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   std::shared_ptr<const playback::Playlist> playlist;
   if (!load_what_to_play(options, parse_options, playlist_path, playlist, err)) return 1;
 
+  const std::string shader_dir = shader_cache_dir(options.shader_cache);
+  const std::string driver_cache_problem = prepare_driver_cache(shader_dir);
   const std::unique_ptr<gl::Session> session = gl::Session::open(platform_options(options, platform_name), error);
   if (!session) {
     err << "error: " << error << "\n";
     return 2;
   }
+  const std::string shader_cache_line = open_program_store(*session, shader_dir);
   platform::Platform& platform = session->platform();
   const gl::Caps& caps = session->caps();
   // Textures beyond what this GPU can hold are drawn white with a warning, not failed at upload.
@@ -188,6 +192,7 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
     out << "display: " << platform.not_presenting_reason() << "; waiting for one\n";
     kiosk.display_lost();
   }
+  out << shader_cache_line << (driver_cache_problem.empty() ? "" : "; Mesa's own: " + driver_cache_problem) << "\n";
   out << "playing " << (playlist_path.empty() ? std::string("the command line's scenes") : playlist_path) << ": "
       << playlist->items.size() << " item(s)\n"
       << std::flush;

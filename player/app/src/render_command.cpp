@@ -11,6 +11,7 @@
 #include "platform/platform.h"
 #include "playback/timeline.h"
 #include "scene/load.h"
+#include "shader_cache.h"
 
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
@@ -96,13 +97,22 @@ bool write_dump(const std::string& dir, const render::Renderer& renderer, const 
 
 }  // namespace
 
-std::unique_ptr<gl::Session> open_render_session(const std::string& platform, int width, int height, std::ostream& err) {
+std::unique_ptr<gl::Session> open_render_session(const std::string& platform, int width, int height, std::ostream& err,
+                                                 const std::string& shader_cache) {
   platform::Options options;
   options.name = platform;
   options.size = {width, height};
+  const std::string shader_dir = shader_cache_dir(shader_cache);
+  if (const std::string problem = prepare_driver_cache(shader_dir); !problem.empty())
+    err << "note: Mesa's shader cache stays where it was: " << problem << "\n";
   std::string error;
   std::unique_ptr<gl::Session> session = gl::Session::open(options, error);
-  if (!session) err << "error: " << error << "\n";
+  if (!session) {
+    err << "error: " << error << "\n";
+    return session;
+  }
+  if (const std::string line = open_program_store(*session, shader_dir); line.find("without") != std::string::npos)
+    err << "note: " << line << "\n";
   return session;
 }
 
@@ -168,7 +178,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
         << ": needs --display FILE (a light field display)\n";
     return 2;
   }
-  const auto session = open_render_session(options.platform, options.frame.width, options.frame.height, err);
+  const auto session =
+      open_render_session(options.platform, options.frame.width, options.frame.height, err, options.shader_cache);
   if (!session) return 1;
   std::string error;
   const platform::Platform& platform = session->platform();
@@ -258,6 +269,7 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     else
       out << "depth prepass: auto needs two frames to choose (--frames 3 or more)\n";
   }
+  out << "shaders: " << program_counts(session->programs()) << "\n";
   if (renderer.ao_frames_averaged() > 1)
     out << "AO averaged over " << renderer.ao_frames_averaged()
         << " frames (temporal accumulation; --temporal off for one frame's)\n";

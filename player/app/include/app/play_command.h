@@ -34,6 +34,7 @@ struct PlayOptions {
   std::string status_file;         // overrides the board's
   std::string log_file;            // a line per frame: frame, item, state, leds, actions, times, memory (tests, benchmarks)
   std::string camera_script;       // mock camera: `t_ms unplug|replug` lines (tests)
+  std::string shader_cache;        // --shader-cache: a folder, "off", or empty for the default (app/src/shader_cache.h)
   render::FrameSettings settings;  // the command line's settings; a playlist item's `ao` overrides them
 };
 

@@ -26,6 +26,7 @@ struct RenderOptions {
   // Light field output (--display): a display file; per-view PNGs; a quilt's panel image; the probe.
   std::string display, modules_dir, native_output;
   bool view_probe = false;
+  std::string shader_cache;      // --shader-cache: a folder, "off", or empty for the default
   bool estimator_given = false;  // --estimator was on the command line (not the default)
   scene::Framing framing;
   render::FrameSettings frame;

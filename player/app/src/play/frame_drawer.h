@@ -37,6 +37,8 @@ class FrameDrawer {
   // Builds every program and SSAO variant now, so a playlist item with another estimator or
   // precision does not compile mid-play, and turns frames by `rotation_degrees`. False and why.
   bool open(int rotation_degrees, std::string& error);
+  // The context's programs: how many were compiled and how many came from the shader cache.
+  const gl::ProgramCache& programs() const { return session_.programs(); }
   // The LED panel over every frame (play --overlay).
   void show_overlay(bool on, size_t leds);
 

@@ -1,6 +1,7 @@
 #include "play/play_loop.h"
 
 #include "image_io.h"
+#include "shader_cache.h"
 
 #include <time.h>
 #include <unistd.h>
@@ -296,7 +297,9 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
     p_.status.service().frame_presented(p_.clock.monotonic());  // only presented frames feed the watchdog
   }
   if (frame_ == 0)
-    p_.out << "first frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+    p_.out << "first frame presented " << ms_since_process_start()
+           << " ms after the process started; shaders: " << program_counts(p_.drawer.programs()) << "\n"
+           << std::flush;
   if (display_found_s_ >= 0.0 && p_.platform.presenting()) {
     p_.out << "display: showing frames again " << (p_.clock.now() - display_found_s_) * 1000.0 << " ms after it came\n"
            << std::flush;

@@ -54,6 +54,8 @@ namespace gl {
   X(PFNGLCREATEPROGRAMPROC, CreateProgram) X(PFNGLATTACHSHADERPROC, AttachShader)     \
   X(PFNGLLINKPROGRAMPROC, LinkProgram) X(PFNGLGETPROGRAMIVPROC, GetProgramiv)         \
   X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                                    \
+  X(PFNGLGETPROGRAMBINARYPROC, GetProgramBinary) X(PFNGLPROGRAMBINARYPROC, ProgramBinary) \
+  X(PFNGLPROGRAMPARAMETERIPROC, ProgramParameteri)                                    \
   X(PFNGLDELETEPROGRAMPROC, DeleteProgram) X(PFNGLUSEPROGRAMPROC, UseProgram)         \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                  \
   X(PFNGLUNIFORM1IPROC, Uniform1i) X(PFNGLUNIFORM1FPROC, Uniform1f)                   \

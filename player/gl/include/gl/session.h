@@ -5,6 +5,7 @@
 #include "gl/caps.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "gl/program_store.h"
 #include "platform/platform.h"
 
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace gl {
 
@@ -24,12 +26,26 @@ class ProgramCache {
   // request. Null on failure, with the file, the variant and the driver's log in `error`; a failed
   // variant is not kept, so a later request reports the same error again.
   const Program* get(std::initializer_list<Stage> stages, const std::string& defines, std::string& error);
+  // The same for whole stage texts (tests give their own).
+  const Program* get(const std::vector<StageSource>& sources, std::string& error);
+
+  // From now on, programs not yet in this context are first looked for in `store`, and the ones
+  // compiled are kept there.
+  void use_store(std::unique_ptr<ProgramStore> store) { store_ = std::move(store); }
+  const ProgramStore* store() const { return store_.get(); }
+  // The first failure to keep a program in the store ("" if none): the player goes on without it.
+  const std::string& store_problem() const { return store_problem_; }
+
   // How many programs were compiled and linked in this context (a request answered from the cache
-  // compiles nothing).
+  // compiles nothing, nor does a program loaded from the store).
   std::size_t compiled() const { return compiled_; }
 
  private:
+  const Program* add(std::string key, const std::vector<StageSource>& sources, std::string& error);
+
   std::size_t compiled_ = 0;
+  std::unique_ptr<ProgramStore> store_;
+  std::string store_problem_;
   // Pointers handed out stay valid: map nodes do not move.
   std::map<std::string, Program, std::less<>> programs_;
 };

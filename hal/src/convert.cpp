@@ -1,7 +1,6 @@
 #include "hal/convert.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "base/image_codec.h"
 
 #include <algorithm>
 #include <string>
@@ -93,8 +92,11 @@ void yuyv_to_rgb(std::span<const std::uint8_t> src, int width, int height, int s
   }
 }
 
+// The decoder is made at the first frame, not with the camera: the image module is loaded then
+// (the player loads it beside the frame loop once its first frame is shown), not at start-up.
 struct MjpegDecoder::Impl {
-  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create("jpg");
+  std::string missing;  // why there is no decoder
+  std::unique_ptr<base::images::Reader> input;
 };
 
 MjpegDecoder::MjpegDecoder() : impl_(std::make_unique<Impl>()) {}
@@ -104,8 +106,9 @@ MjpegDecoder& MjpegDecoder::operator=(MjpegDecoder&&) noexcept = default;
 
 bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std::string* error) {
   auto& in = impl_->input;
+  if (!in && impl_->missing.empty()) in = base::images::make_reader("jpg", impl_->missing);
   if (!in) {
-    if (error) *error = "JPEG decoder: OpenImageIO has no JPEG reader";
+    if (error) *error = "JPEG decoder: " + impl_->missing;
     return false;
   }
   // The frame's size is checked before the decoder sees it: OpenImageIO's open() already starts
@@ -128,10 +131,8 @@ bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std
     return false;
   }
   // The decoder reads the frame where the driver mapped it, through an in-memory I/O proxy.
-  OIIO::Filesystem::IOMemReader reader(const_cast<std::uint8_t*>(jpeg.data()), jpeg.size());
-  in->set_ioproxy(&reader);
-  OIIO::ImageSpec spec;
-  const bool opened = in->open("frame.jpg", spec, OIIO::ImageSpec());
+  base::images::Header spec;
+  const bool opened = in->open("frame.jpg", jpeg.data(), jpeg.size(), spec, why);
   bool ok = opened;
   if (opened && (spec.width != out.width || spec.height != out.height)) {
     if (error)
@@ -140,21 +141,19 @@ bool MjpegDecoder::decode(std::span<const std::uint8_t> jpeg, RgbImage& out, std
     ok = false;
   } else if (opened) {
     // Grey JPEGs come through as one channel: read it, then replicate in place from the back.
-    const int channels = std::min(spec.nchannels, 3);
-    ok = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out.pixels.data(), static_cast<OIIO::stride_t>(3),
-                        OIIO::AutoStride, OIIO::AutoStride);
+    const int channels = std::min(spec.channels, 3);
+    ok = in->read(channels, out.pixels.data(), 3, why);
     if (ok && channels == 1) {
       for (std::size_t i = static_cast<std::size_t>(out.width) * out.height; i-- > 0;) {
         const std::uint8_t v = out.pixels[i * 3];
         out.pixels[i * 3 + 1] = out.pixels[i * 3 + 2] = v;
       }
     }
-    if (!ok && error) *error = "MJPEG frame: " + in->geterror();
+    if (!ok && error) *error = "MJPEG frame: " + why;
   } else if (error) {
-    *error = "MJPEG frame: not a decodable JPEG: " + in->geterror();
+    *error = "MJPEG frame: not a decodable JPEG: " + why;
   }
   in->close();
-  in->set_ioproxy(nullptr);
   return ok;
 }
 

@@ -1,9 +1,7 @@
 #include "hal/image.h"
 
+#include "base/image_codec.h"
 #include "base/read_file.h"
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 
@@ -17,14 +15,17 @@ bool load_image(const std::string& path, RgbImage& out, std::string* error) {
     if (error) *error = why;
     return false;
   }
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  auto in = OIIO::ImageInput::open(path, nullptr, &memory);
+  const std::unique_ptr<base::images::Reader> in = base::images::make_reader("", why);
   if (!in) {
-    if (error) *error = path + ": cannot open image: " + OIIO::geterror();
+    if (error) *error = path + ": cannot open image: " + why;
     return false;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 1) {
+  base::images::Header spec;
+  if (!in->open(path, bytes.data(), bytes.size(), spec, why)) {
+    if (error) *error = path + ": cannot open image: " + why;
+    return false;
+  }
+  if (spec.width <= 0 || spec.height <= 0 || spec.channels < 1) {
     if (error) *error = path + ": expected a non-empty image with at least one channel";
     return false;
   }
@@ -37,10 +38,10 @@ bool load_image(const std::string& path, RgbImage& out, std::string* error) {
                " million pixels are read";
     return false;
   }
-  const int channels = std::min(spec.nchannels, 3);  // grey, RGB; alpha and beyond are not looked at
+  const int channels = std::min(spec.channels, 3);  // grey, RGB; alpha and beyond are not looked at
   std::vector<std::uint8_t> raw(static_cast<std::size_t>(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data())) {
-    if (error) *error = path + ": cannot read pixels: " + in->geterror();
+  if (!in->read(channels, raw.data(), 0, why)) {
+    if (error) *error = path + ": cannot read pixels: " + why;
     return false;
   }
   out.resize(spec.width, spec.height);
@@ -52,17 +53,21 @@ bool load_image(const std::string& path, RgbImage& out, std::string* error) {
 }
 
 bool save_image(const std::string& path, const RgbImage& image, std::string* error) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) {
-    if (error) *error = path + ": no image writer for this file extension: " + OIIO::geterror();
-    return false;
+  base::images::WriteSpec spec;
+  spec.width = image.width;
+  spec.height = image.height;
+  spec.channels = 3;
+  std::string why;
+  switch (base::images::write(path, spec, image.pixels.data(), why)) {
+    case base::images::WriteFailure::none:
+      return true;
+    case base::images::WriteFailure::no_writer:
+      if (error) *error = path + ": no image writer for this file extension: " + why;
+      return false;
+    default:
+      if (error) *error = path + ": cannot write image: " + why;
+      return false;
   }
-  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !out->close()) {
-    if (error) *error = path + ": cannot write image: " + out->geterror();
-    return false;
-  }
-  return true;
 }
 
 }  // namespace hal

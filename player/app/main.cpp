@@ -126,6 +126,8 @@ int main(int argc, char** argv) {
   info_cmd->add_option("--platform", info_platform, "GL platform: " + platform::names_text())
       ->check(CLI::IsMember(platform::names()))
       ->capture_default_str();
+  std::string info_shader_cache;
+  info_cmd->add_option("--shader-cache", info_shader_cache, shader_cache_help);
 
   hal::HalTestOptions hal_test;
   auto* hal_cmd = cli.add_subcommand(
@@ -243,7 +245,7 @@ int main(int argc, char** argv) {
     for (const auto& [key, value] : render_settings.values) render.estimator_given |= key == "estimator" && !value.empty();
     return app::run_render(render, std::cout, std::cerr);
   }
-  if (info_cmd->parsed()) return app::run_info(info_platform, std::cout, std::cerr);
+  if (info_cmd->parsed()) return app::run_info(info_platform, info_shader_cache, std::cout, std::cerr);
   if (check_cmd->parsed()) return app::run_check(check_scenes, std::cout, std::cerr);
   return 2;
 }

@@ -24,8 +24,8 @@ std::vector<gl::StageSource> fill_program(const char* colour) {
       "  vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;\n"
       "  gl_Position = vec4(corner, 0.0, 1.0);\n"
       "}\n";
-  const std::string fragment = std::string("#version 310 es\nprecision mediump float;\nout vec4 colour;\nvoid main() { colour = ") +
-                               colour + "; }\n";
+  const std::string fragment =
+      std::string("#version 310 es\nprecision mediump float;\nout vec4 colour;\nvoid main() { colour = ") + colour + "; }\n";
   return {{GL_VERTEX_SHADER, "fill.vert", "default", vertex}, {GL_FRAGMENT_SHADER, "fill.frag", "default", fragment}};
 }
 

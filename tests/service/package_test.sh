@@ -33,7 +33,7 @@ echo "package: $(basename "$deb")"
 # The file list, exactly: what the unit, sysusers, udev, the board owner and the docs need.
 dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|; s|/$||' | grep -v '^$' | sort > "$out/files.actual"
 {
-  for dir in / /etc /etc/default /etc/ssao-player /usr /usr/bin /usr/lib /usr/lib/systemd /usr/lib/systemd/system \
+  for dir in / /etc /etc/default /etc/ssao-player /usr /usr/bin /usr/lib /usr/lib/ssao-player /usr/lib/systemd /usr/lib/systemd/system \
              /usr/lib/sysusers.d /usr/lib/udev /usr/lib/udev/rules.d /usr/share /usr/share/doc /usr/share/doc/ssao-player \
              /usr/share/ssao-player /usr/share/ssao-player/board /usr/share/ssao-player/board/displays \
              /usr/share/ssao-player/demo /var /var/lib /var/lib/ssao-player; do
@@ -42,6 +42,7 @@ dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|; s|/$||' | grep -v '^$
   echo /etc/default/ssao-player
   echo /etc/ssao-player/board.toml
   echo /usr/bin/player
+  echo /usr/lib/ssao-player/libssao-player-images.so
   echo /usr/lib/systemd/system/ssao-player.service
   echo /usr/lib/sysusers.d/ssao-player.conf
   echo /usr/lib/udev/rules.d/60-ssao-player-gpio.rules
@@ -64,7 +65,8 @@ depends=$(dpkg-deb -f "$deb" Depends)
 echo "Depends: $depends"
 # Computed from the binary's NEEDED libraries (versioned, as dpkg-shlibdeps writes them), and the
 # systemd that postinst's systemd-sysusers comes from.
-for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'systemd'; do
+# libopenimageio comes from the image module (/usr/lib/ssao-player), which the player loads on first use.
+for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'systemd'; do
   case ", $depends," in
     *", $needed"*) ;;
     *) fail "Depends: expected $needed..., got '$depends'" ;;
@@ -100,11 +102,17 @@ playlist=$(sed -n 's/^Environment=PLAYER_PLAYLIST=//p' "$unit")
 [ -f "$root$playlist" ] || fail "$unit: PLAYER_PLAYLIST: $playlist is not in the package"
 "$here/verify_unit.sh" "$unit" "$root$exec_start" "$out/unit"
 
-# The installed player plays the installed demo playlist (headless here).
-if ! "$root$exec_start" play "$root$playlist" --platform egl --size 64x48 --frames 3 > "$out/demo.log" 2>&1; then
+# The installed player plays the installed demo playlist (headless here), and writes its last frame
+# through the installed image module.
+if ! "$root$exec_start" play "$root$playlist" --platform egl --size 64x48 --frames 3 --snapshot "$out/demo.png" \
+  --shader-cache off > "$out/demo.log" 2>&1; then
   cat "$out/demo.log"
   fail "the installed player on the installed demo playlist"
 fi
 grep -q '^playing .*/usr/share/ssao-player/demo/playlist.toml: 3 item(s)$' "$out/demo.log" || fail "demo: $(cat "$out/demo.log")"
 grep -q '^played 3 frames, 0 error(s)$' "$out/demo.log" || fail "demo: $(cat "$out/demo.log")"
+"$root$exec_start" info --platform egl --shader-cache off > "$out/info.log" 2>&1 || fail "player info: $(cat "$out/info.log")"
+grep -q "^image files: *$root/usr/lib/ssao-player/libssao-player-images.so (OpenImageIO " "$out/info.log" ||
+  fail "the installed player does not use the installed image module: $(grep '^image files' "$out/info.log")"
+[ -s "$out/demo.png" ] || fail "demo: --snapshot wrote no $out/demo.png (the image module: $(cat "$out/demo.log"))"
 echo "ok: the installed player plays the installed demo playlist"

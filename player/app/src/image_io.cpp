@@ -1,6 +1,7 @@
 #include "image_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include "base/image_codec.h"
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -20,46 +21,50 @@ std::string why_not_writable(const std::string& path, const std::string& fallbac
 
 }  // namespace
 
+namespace {
+
+bool write_image(const std::string& path, const base::images::WriteSpec& spec, const void* pixels, const char* writer,
+                 std::string& error) {
+  std::string why;
+  switch (base::images::write(path, spec, pixels, why)) {
+    case base::images::WriteFailure::none:
+      return true;
+    case base::images::WriteFailure::no_writer:
+      error = path + ": cannot create " + writer + " (" + why + ")";
+      return false;
+    case base::images::WriteFailure::open:
+      error = path + ": cannot write: " + why_not_writable(path, why);
+      return false;
+    case base::images::WriteFailure::write:
+      error = path + ": cannot write (" + why + ")";
+      return false;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba, std::string& error) {
-  auto output = OIIO::ImageOutput::create(path);
-  if (!output) {
-    error = path + ": cannot create an image writer (" + OIIO::geterror() + ")";
-    return false;
-  }
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-  if (!output->open(path, spec)) {
-    error = path + ": cannot write: " + why_not_writable(path, output->geterror());
-    return false;
-  }
-  if (!output->write_image(OIIO::TypeDesc::UINT8, rgba.data()) || !output->close()) {
-    error = path + ": cannot write (" + output->geterror() + ")";
-    return false;
-  }
-  return true;
+  base::images::WriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.channels = 4;
+  return write_image(path, spec, rgba.data(), "an image writer", error);
 }
 
 bool write_exr(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
                const std::vector<std::string>& channel_names, std::string& error) {
-  auto output = OIIO::ImageOutput::create(path);
-  if (!output) {
-    error = path + ": cannot create an EXR writer (" + OIIO::geterror() + ")";
-    return false;
-  }
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = channel_names;
-  spec.attribute("compression", "zip");
-  const OIIO::stride_t row = static_cast<OIIO::stride_t>(width) * channels * static_cast<OIIO::stride_t>(sizeof(float));
+  base::images::WriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.channels = channels;
+  spec.floating = true;
+  spec.channel_names = channel_names;
+  spec.compression = "zip";
   // Start at the last row in memory (the top of the picture) and walk down with a negative stride.
+  spec.row_stride = -static_cast<std::ptrdiff_t>(width) * channels * static_cast<std::ptrdiff_t>(sizeof(float));
   const float* top = values.data() + static_cast<size_t>(height - 1) * static_cast<size_t>(width) * static_cast<size_t>(channels);
-  if (!output->open(path, spec)) {
-    error = path + ": cannot write: " + why_not_writable(path, output->geterror());
-    return false;
-  }
-  if (!output->write_image(OIIO::TypeDesc::FLOAT, top, OIIO::AutoStride, -row) || !output->close()) {
-    error = path + ": cannot write (" + output->geterror() + ")";
-    return false;
-  }
-  return true;
+  return write_image(path, spec, top, "an EXR writer", error);
 }
 
 }  // namespace app

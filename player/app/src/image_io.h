@@ -1,5 +1,5 @@
 #pragma once
-// Image files through OpenImageIO: PNG for what people look at, float EXR for what tools evaluate.
+// Image files through OpenImageIO (base/image_codec.h): PNG for what people look at, float EXR for what tools evaluate.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 
 #include "scene/animation.h"
 
+#include "base/image_codec.h"
 #include "dump.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -281,8 +282,8 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
   return 0;
 }
 
-int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err) {
-  const auto session = open_render_session(platform_name, 64, 64, err);
+int run_info(const std::string& platform_name, const std::string& shader_cache, std::ostream& out, std::ostream& err) {
+  const auto session = open_render_session(platform_name, 64, 64, err, shader_cache);
   if (!session) return 1;
   const platform::Platform& platform = session->platform();
   const gl::Caps& caps = session->caps();
@@ -297,6 +298,8 @@ int run_info(const std::string& platform_name, std::ostream& out, std::ostream& 
   for (const auto& [extension, present] : caps.extensions_used())
     out << "  " << extension << "  " << (present ? "yes" : "no") << "\n";
   out << "per-pass timing: " << (caps.timer_query ? "GPU timer queries" : "CPU clock around glFinish") << "\n";
+  out << "image files:     " << base::images::describe() << "\n";
+  if (const gl::ProgramStore* store = session->programs().store()) out << "program binaries: " << store->dir() << "\n";
   return 0;
 }
 

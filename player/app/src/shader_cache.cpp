@@ -46,8 +46,7 @@ std::string prepare_driver_cache(const std::string& dir) {
 std::string open_program_store(gl::Session& session, const std::string& dir) {
   if (dir.empty()) return "shader cache: off";
   std::string reason;
-  std::unique_ptr<gl::ProgramStore> store =
-      gl::ProgramStore::open((fs::path(dir) / "programs").string(), session.caps(), reason);
+  std::unique_ptr<gl::ProgramStore> store = gl::ProgramStore::open((fs::path(dir) / "programs").string(), session.caps(), reason);
   if (!store) return "shader cache: " + dir + ", without program binaries (" + reason + ")";
   session.programs().use_store(std::move(store));
   return "shader cache: " + dir;

@@ -2,6 +2,7 @@
 
 #include "gl/gl_api.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
@@ -11,7 +12,6 @@
 #include <fstream>
 #include <iterator>
 #include <system_error>
-#include <unistd.h>
 
 namespace gl {
 namespace {
@@ -144,8 +144,7 @@ Program ProgramStore::load(const std::vector<StageSource>& sources) {
   std::memcpy(&header, bytes.data(), sizeof header);
   const char* binary = bytes.data() + sizeof header;
   if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0 || header.length != bytes.size() - sizeof header ||
-      header.key_check != check_key(driver_, sources) ||
-      header.checksum != fnv1a(0xcbf29ce484222325ull, binary, header.length))
+      header.key_check != check_key(driver_, sources) || header.checksum != fnv1a(0xcbf29ce484222325ull, binary, header.length))
     return reject();
   Program program(api.CreateProgram());
   api.ProgramBinary(program.id(), header.format, binary, static_cast<GLsizei>(header.length));

@@ -1,9 +1,7 @@
 #include "scene/environment.h"
 
+#include "base/image_codec.h"
 #include "base/read_file.h"
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <atomic>
@@ -473,18 +471,18 @@ bool load_environment(const std::filesystem::path& file, Environment& out, std::
   if (bytes.empty()) return fail("the environment image is empty; " + expected_image);
   // OpenImageIO picks its reader by the name's extension, and tries each in turn when that fails;
   // every one of them reads from memory, so the file is not opened a second time.
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, nullptr, &memory);
+  std::string why;
+  const std::unique_ptr<base::images::Reader> input = base::images::make_reader("", why);
+  if (!input) return fail(why);
+  base::images::Header spec;
   // Its messages name the file as missing when no reader knows the data; ours says what it is.
-  (void)OIIO::geterror();
-  if (!input)
+  if (!input->open(path, bytes.data(), bytes.size(), spec, why))
     return fail("the environment image cannot be decoded (corrupt, truncated or of no known format); " + expected_image);
-  const OIIO::ImageSpec spec = input->spec();
   const std::string dimensions = std::to_string(spec.width) + "x" + std::to_string(spec.height);
   if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
     return fail("the environment image is " + dimensions + "; " + expected_image);
-  if (spec.nchannels < 3)
-    return fail("the environment image has " + std::to_string(spec.nchannels) + " channel(s); expected RGB or RGBA");
+  if (spec.channels < 3)
+    return fail("the environment image has " + std::to_string(spec.channels) + " channel(s); expected RGB or RGBA");
   if (spec.width > kEnvironmentMaxWidth)
     return fail("the environment image is " + dimensions + "; expected at most " + std::to_string(kEnvironmentMaxWidth) +
                 " pixels wide");
@@ -496,12 +494,11 @@ bool load_environment(const std::filesystem::path& file, Environment& out, std::
     return fail("the environment image is " + dimensions + ", " + base::byte_size_text(decoded) +
                 " decoded as RGB floats; expected at most " + base::byte_size_text(kEnvironmentDecodedBudget));
   std::vector<float> rgb(decoded / sizeof(float));
-  const bool read = input->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data());
-  const bool clean = !input->has_error();
-  (void)input->geterror();
-  (void)OIIO::geterror();
-  if (!read || !clean) return fail("the environment image's pixels cannot be decoded (corrupt or truncated); " + expected_image);
-  if (!spec.format.is_floating_point())
+  std::string messages;
+  const bool read = input->read(3, rgb.data(), messages);
+  if (!read || !messages.empty())
+    return fail("the environment image's pixels cannot be decoded (corrupt or truncated); " + expected_image);
+  if (!spec.floating)
     for (float& c : rgb) c = srgb_to_linear(c);
   static const char* const kChannel[] = {"R", "G", "B"};
   for (std::size_t i = 0; i < rgb.size(); ++i) {

@@ -1,9 +1,8 @@
 #include "gltf_images.h"
 
+#include "base/image_codec.h"
 #include "gltf_document.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <png.h>
 
 #include <algorithm>
@@ -61,24 +60,20 @@ DecodedImage decode_image(const unsigned char* bytes, size_t size, const LoadOpt
     if (!png_image_finish_read(&decoder, nullptr, pixels.data(), 0, nullptr)) return skip(corrupt);
     return finish(width, height, std::move(pixels));
   }
-  OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), size);
-  auto input = OIIO::ImageInput::open("image.jpg", nullptr, &memory);
-  if (!input) {
-    (void)OIIO::geterror();  // clears the thread's message so it cannot surface later
-    return skip(corrupt);
-  }
-  const OIIO::ImageSpec& spec = input->spec();
+  std::string why;
+  const std::unique_ptr<base::images::Reader> input = base::images::make_reader("", why);
+  if (!input) return skip(why);
+  base::images::Header spec;
+  if (!input->open("image.jpg", bytes, size, spec, why)) return skip(corrupt);
   if (spec.width <= 0 || spec.height <= 0) return skip(corrupt);
   if (const std::string too_large = size_problem(uint64_t(spec.width), uint64_t(spec.height)); !too_large.empty())
     return skip(too_large);
   std::vector<unsigned char> pixels(size_t(spec.width) * size_t(spec.height) * 4, 255);
-  const int channels = std::min(spec.nchannels, 4);
-  const bool read = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data(), 4);
-  const bool clean = !input->has_error();
-  (void)input->geterror();
-  (void)OIIO::geterror();
+  const int channels = std::min(spec.channels, 4);
+  std::string messages;
+  const bool read = input->read(channels, pixels.data(), 4, messages);
   // libjpeg decodes a truncated file to grey with only a warning: any message counts as a failure.
-  if (!read || !clean) return skip(corrupt);
+  if (!read || !messages.empty()) return skip(corrupt);
   if (channels < 3) {  // grey (+ alpha): spread grey over RGB
     for (size_t p = 0; p < pixels.size(); p += 4) {
       if (channels == 2) pixels[p + 3] = pixels[p + 1];

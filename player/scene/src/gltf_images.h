@@ -1,5 +1,5 @@
 #pragma once
-// Images: PNG through libpng, JPEG through OpenImageIO, sizes checked
+// Images: PNG through libpng, JPEG through OpenImageIO (base/image_codec.h), sizes checked
 // from the header before anything is decoded. An image that cannot be used (not PNG or JPEG,
 // corrupt, truncated, too large) does not stop the scene: its texture is drawn white and the report
 // says why, so a kiosk still shows the geometry.

@@ -50,6 +50,6 @@ scene::Camera render_camera(const RenderOptions& options, const scene::Scene& sc
                             std::string* note = nullptr);
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err);
-int run_info(const std::string& platform_name, std::ostream& out, std::ostream& err);
+int run_info(const std::string& platform_name, const std::string& shader_cache, std::ostream& out, std::ostream& err);
 
 }  // namespace app

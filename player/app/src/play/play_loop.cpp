@@ -1,5 +1,6 @@
 #include "play/play_loop.h"
 
+#include "base/image_codec.h"
 #include "image_io.h"
 #include "shader_cache.h"
 
@@ -44,7 +45,11 @@ double ms_since_process_start() {
 
 PlayLoop::PlayLoop(const PlayPieces& pieces, std::string playlist_path, std::shared_ptr<const playback::Playlist> playlist,
                    long long frames)
-    : p_(pieces), playlist_path_(std::move(playlist_path)), playlist_(std::move(playlist)), frame_(frames) {}
+    : p_(pieces),
+      playlist_path_(std::move(playlist_path)),
+      playlist_(std::move(playlist)),
+      frame_(frames),
+      scene_shown_(frames > 0) {}
 
 void PlayLoop::update_status(bool force) {
   p_.status.announce_state();  // before the period: a state change reaches systemd at once
@@ -242,6 +247,7 @@ void PlayLoop::draw(const playback::Cue& cue) {
   if (p_.kiosk.frame_drawn(shown, timeline_->paused())) update_status(true);  // sets the LEDs too
 
   p_.drawer.begin_frame();
+  drew_scene_ = shown == KioskState::Shown::scene && !p_.check.checking();
   if (p_.check.checking())
     p_.check.draw(p_.drawer.present(), p_.drawer.width(), p_.drawer.height());
   else
@@ -296,10 +302,22 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
   } else {
     p_.status.service().frame_presented(p_.clock.monotonic());  // only presented frames feed the watchdog
   }
+  // A camera's MJPEG frames are decoded on this thread: the image module is loaded beside it, once the
+  // first frame is shown, so that neither the start nor the first self-check waits for it.
+  if (frame_ == 0 && p_.devices.camera && !p_.devices.mock_camera && !image_preload_.joinable())
+    image_preload_ = std::jthread([] {
+      std::string ignored;  // the first use reports it, with the frame that needed it
+      base::images::preload(ignored);
+    });
   if (frame_ == 0)
     p_.out << "first frame presented " << ms_since_process_start()
            << " ms after the process started; shaders: " << program_counts(p_.drawer.programs()) << "\n"
            << std::flush;
+  // What a restart costs the people in front of the screen: the first frame may be the loading screen.
+  if (drew_scene_ && !scene_shown_) {
+    scene_shown_ = true;
+    p_.out << "first scene frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+  }
   if (display_found_s_ >= 0.0 && p_.platform.presenting()) {
     p_.out << "display: showing frames again " << (p_.clock.now() - display_found_s_) * 1000.0 << " ms after it came\n"
            << std::flush;

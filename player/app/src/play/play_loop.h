@@ -20,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace app {
@@ -89,7 +90,12 @@ class PlayLoop {
   long long frame_;
   int last_item_ = -1;
   double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown
+  bool drew_scene_ = false;        // this frame shows a scene, not the loading screen or a check pattern
+  bool scene_shown_;               // a scene frame was presented (or the loop resumed after a GPU reset)
   std::string remake_reason_;
+  // Loads the image module (base/image_codec.h) for a camera, after the first frame. Last: joined
+  // before anything above goes.
+  std::jthread image_preload_;
 };
 
 }  // namespace app

@@ -112,8 +112,8 @@ std::unique_ptr<gl::Session> open_render_session(const std::string& platform, in
     err << "error: " << error << "\n";
     return session;
   }
-  if (const std::string line = open_program_store(*session, shader_dir); line.find("without") != std::string::npos)
-    err << "note: " << line << "\n";
+  const std::string line = open_program_store(*session, shader_dir);
+  if (!shader_dir.empty() && !session->programs().store()) err << "note: " << line << "\n";
   return session;
 }
 

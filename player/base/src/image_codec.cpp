@@ -51,11 +51,11 @@ const Loaded& loaded() {
         return;
       }
       auto* entry = reinterpret_cast<const Codec* (*)()>(dlsym(handle, "player_image_codec_v1"));
-      if (!entry || !entry()) {
+      result.codec = entry ? entry() : nullptr;
+      if (!result.codec) {
         result.error = "image support: " + path + " is not this player's image module (no player_image_codec_v1)";
         return;
       }
-      result.codec = entry();
       result.path = path;
       return;
     }

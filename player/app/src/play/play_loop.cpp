@@ -304,7 +304,7 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
   }
   // A camera's MJPEG frames are decoded on this thread: the image module is loaded beside it, once the
   // first frame is shown, so that neither the start nor the first self-check waits for it.
-  if (frame_ == 0 && p_.devices.camera && !p_.devices.mock_camera && !image_preload_.joinable())
+  if (frame_ == 0 && p_.devices.camera && !p_.devices.mock_camera)
     image_preload_ = std::jthread([] {
       std::string ignored;  // the first use reports it, with the frame that needed it
       base::images::preload(ignored);

@@ -19,6 +19,9 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
+# Tests that run the whole player (or its package) rather than one component's test program.
+END_TO_END = re.compile(r"^(cli|service)\.")
+
 # The test family of each folder: the ctest tests that exercise its code.
 FAMILIES = {
     "player/platform": r"^(gl|cli)\.",
@@ -214,10 +217,10 @@ def load_equivalents(folder):
     return entries, path
 
 
-def run(command, log, timeout=None, cwd=None):
+def run(command, log, timeout=None, cwd=None, append=False):
     """The command's exit status, or None when it ran past `timeout` (then its whole process group,
     the tests ctest started included, is killed)."""
-    with open(log, "w") as out:
+    with open(log, "a" if append else "w") as out:
         process = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, cwd=cwd, start_new_session=True)
         try:
             return process.wait(timeout=timeout)
@@ -227,6 +230,46 @@ def run(command, log, timeout=None, cwd=None):
             return None
 
 
+def ctest_pattern(names):
+    """A ctest -R regex that matches exactly these test names (CMake's regex syntax)."""
+    escaped = (re.sub(r"([][.*+?^$(){}|\\])", r"\\\1", name) for name in names)
+    return "^(" + "|".join(escaped) + ")$"
+
+
+def reach(build, src, selector):
+    """For each test the selector picks, the source files (headers included) of every program of the
+    build tree its command runs, or None where it runs none (then it is always run). Read from
+    ninja's own graph and the header dependencies the compiler recorded, so it follows the build."""
+    listed = subprocess.run(["ctest", "--test-dir", build, "--show-only=json-v1"] + selector,
+                            capture_output=True, check=True, text=True).stdout
+    import json
+    objects = {}
+    current = None
+    for line in subprocess.run(["ninja", "-C", build, "-t", "deps"], capture_output=True, check=True,
+                               text=True).stdout.splitlines():
+        if line and not line.startswith(" "):
+            current = objects.setdefault(line.split(": #deps")[0], set())
+        elif line.strip() and current is not None:
+            path = os.path.normpath(os.path.join(build, line.strip()))
+            if path.startswith(src + os.sep):
+                current.add(os.path.relpath(path, src))
+    programs = {}
+    def files_of(program):
+        if program not in programs:
+            commands = subprocess.run(["ninja", "-C", build, "-t", "commands", os.path.relpath(program, build)],
+                                      capture_output=True, text=True).stdout
+            programs[program] = set().union(*(objects.get(o, set()) for o in re.findall(r" -o (\S+\.o) ", commands)))
+        return programs[program]
+    tests = {}
+    for test in json.loads(listed)["tests"]:
+        words = " ".join(test.get("command") or [])
+        found = {p for p in re.findall(re.escape(build) + r"/[^|;=\s'\"]+", words)
+                 if os.path.isfile(p) and os.access(p, os.X_OK) and not p.endswith(".so")}
+        reached = [files_of(p) for p in found]
+        tests[test["name"]] = set().union(*reached) if any(reached) else None
+    return tests
+
+
 def main():
     parser = argparse.ArgumentParser(prog="tools/mutants --random")
     parser.add_argument("--random", type=int, required=True, metavar="N")
@@ -234,6 +277,7 @@ def main():
     parser.add_argument("--folder", required=True)
     parser.add_argument("--tests", help="ctest regex (default: the folder's family)")
     parser.add_argument("--list-only", action="store_true", help="print the mutants, build nothing")
+    parser.add_argument("--only", metavar="REGEX", help="of the N, only the mutants whose id matches (a survivor again)")
     args = parser.parse_args()
     folder = args.folder.strip("/")
     if not os.path.isdir(os.path.join(ROOT, folder)):
@@ -245,6 +289,8 @@ def main():
     if not candidates:
         sys.exit(f"mutants: no mutable site in {folder}")
     chosen = random.Random(args.seed).sample(candidates, min(args.random, len(candidates)))
+    if args.only:
+        chosen = [m for m in chosen if re.search(args.only, mutant_id(m[0], m[3], m[4], m[2]))]
     equivalents, equivalents_path = load_equivalents(folder)
     print(f"mutants: {len(chosen)} of {len(candidates)} candidate mutants in {folder} (seed {args.seed}); tests: {tests}")
     if args.list_only:
@@ -254,7 +300,7 @@ def main():
 
     scratch = os.environ.get("MUTANTS_DIR", "/tmp/player-mutants")
     src = os.path.join(scratch, "src")
-    build = os.path.join(scratch, "build")
+    build = os.path.join(src, "build", "mutants")
     logs = os.path.join(scratch, "log", "random")
     os.makedirs(logs, exist_ok=True)
     # The scratch tree as tools/mutants makes it: only changed files copied, so builds stay incremental.
@@ -270,7 +316,14 @@ def main():
     shared = os.path.join(scratch, "shared")
     if not os.path.exists(shared):
         os.symlink(os.path.realpath(os.path.join(ROOT, "..", "shared")), shared)
-    if run(["cmake", "-S", src, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Debug"], os.path.join(logs, "configure.txt")):
+    if shutil.which("ccache") and os.environ.get("PLAYER_CCACHE", "1") != "0":
+        # As tools/test does, and with the build two folders below the sources as the presets have
+        # it, so that the release build's cached objects serve the baseline.
+        os.environ.setdefault("CCACHE_DIR", os.path.join(os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")),
+                                                         "ssao-player", "ccache"))
+        os.environ.update(CCACHE_BASEDIR=src, CCACHE_NOHASHDIR="1", CMAKE_C_COMPILER_LAUNCHER="ccache",
+                          CMAKE_CXX_COMPILER_LAUNCHER="ccache")
+    if run(["cmake", "-S", src, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release"], os.path.join(logs, "configure.txt")):
         sys.exit(f"mutants: configure failed ({logs}/configure.txt)")
     print("== baseline build and the family's tests, unmutated")
     if run(["cmake", "--build", build, "-j2"], os.path.join(logs, "baseline-build.txt")):
@@ -281,6 +334,9 @@ def main():
         sys.exit(f"mutants: the family's tests fail without any mutant ({logs}/baseline-tests.txt)")
     baseline = time.time() - started
     limit = int(baseline * 3 + 120)
+    # Only the tests whose programs hold the mutated file can notice it: a mutant in a file no test
+    # program links (a module loaded at run time) runs the whole family.
+    reached_by = reach(build, src, ["-R", tests, "-E", r"^(vm|fuzz)\."])
 
     results = []
     for number, (path, index, op, original, new) in enumerate(chosen, 1):
@@ -299,13 +355,26 @@ def main():
             if run(["cmake", "--build", build, "-j2"], os.path.join(logs, f"{ident}-build.txt")):
                 result, by = "did not build", ""
             else:
-                code = run(ctest + ["--stop-on-failure", "--timeout", str(limit)], os.path.join(logs, f"{ident}-tests.txt"),
-                           timeout=limit * 2)
+                chosen_tests = [name for name, files in reached_by.items() if files is None or path in files]
+                if not any(path in files for files in reached_by.values() if files):
+                    chosen_tests = list(reached_by)
+                # The component's own test programs first, the end-to-end tests of the player only
+                # when those pass: most mutants die in the first seconds.
+                stages = [[t for t in chosen_tests if not END_TO_END.match(t)], [t for t in chosen_tests if END_TO_END.match(t)]]
+                code = 0
+                with open(os.path.join(logs, f"{ident}-tests.txt"), "w"):
+                    pass
+                for stage, names in enumerate(filter(None, stages)):
+                    code = run(["ctest", "--test-dir", build, "-R", ctest_pattern(names), "-j2", "--stop-on-failure",
+                                "--timeout", str(limit)], os.path.join(logs, f"{ident}-tests.txt"), timeout=limit * 2,
+                               append=True)
+                    if code != 0:
+                        break
                 if code is None:
                     result, by = "timed out", ""
                 elif code == 0:
                     why = equivalents.get((path, original.strip(), new.strip()))
-                    result, by = ("equivalent", why) if why else ("SURVIVED", "")
+                    result, by = ("equivalent", why) if why else ("SURVIVED", f"{len(chosen_tests)} tests ran")
                 else:
                     failed = re.findall(r"^\s+\d+ - (\S+)", open(os.path.join(logs, f"{ident}-tests.txt")).read(), re.M)
                     timeouts = "Timeout" in open(os.path.join(logs, f"{ident}-tests.txt")).read()
@@ -322,7 +391,8 @@ def main():
     built = len(results) - counts["did not build"]
     detected = counts["killed"] + counts["timed out"]
     rate = 100.0 * detected / built if built else 0.0
-    report = os.path.join(ROOT, "out", "mutants", f"random-{folder.replace('/', '-')}-seed{args.seed}.md")
+    part = "-only" if args.only else ""
+    report = os.path.join(ROOT, "out", "mutants", f"random-{folder.replace('/', '-')}-seed{args.seed}{part}.md")
     os.makedirs(os.path.dirname(report), exist_ok=True)
     with open(report, "w") as out:
         out.write(f"# Random mutants: {folder}, seed {args.seed}, {len(results)} mutants\n\n")

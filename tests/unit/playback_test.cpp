@@ -380,6 +380,8 @@ const ErrorCase error_cases[] = {
     // Messages stay on one line whatever the strings hold.
     {"ControlCharactersEscaped", "[[item]]\nscene = \"a\\nb\"\ncamera = { motion = \"a\\\"\\tb\" }\n",
      "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a\\\"\\tb\""},
+    {"OtherControlCharactersAsHex", ITEM "camera = { motion = \"a\\u0001b\\u007f\" }\n",
+     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a\\x01b\\x7f\""},
     // TOML syntax: toml++'s own words.
     {"SyntaxUnterminatedString", "loop = true\n[[item]]\nscene = \"a.glb\n",
      "3:15: Error while parsing string: unescaped control characters other than TAB (U+0009) are explicitly prohibited"},

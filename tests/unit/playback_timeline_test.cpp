@@ -269,6 +269,17 @@ TEST(Timeline, AStallOfDecadesOverTinyItemsIsArithmetic) {
   // 1e9 s over quarter-second items would be billions of steps if walked one by one.
   Timeline tl(make({0.5, 0.25, 0.25}), t0, wall0);
   check(tl, {{0.1, 0, 0.1}, {1e9 + 0.625, 1, 0.125}});
+  // A clock that jumps by 2^40 s: a walk item by item would not end today.
+  Timeline far(make({0.5, 0.25, 0.25}), t0, wall0);
+  check(far, {{0.125, 0, 0.125}, {0x1p40 + 0.625, 1, 0.125}});
+}
+
+TEST(Timeline, AStallOfDecadesWithAnUnplayableItemIsArithmeticToo) {
+  // The cycle of the items that play (0.5 s) is what a stall skips by: were it lost when an item is
+  // marked unplayable, the timeline would walk 2^42 items.
+  Timeline tl(make({0.5, 0.25, 0.25}), t0, wall0);
+  tl.set_playable(0, false);
+  check(tl, {{0.125, 1, 0}, {0x1p40 + 0.5, 2, 0.125}});
 }
 
 // A scene that fails marks every item naming it, and may be marked again when it fails again: the
@@ -340,7 +351,9 @@ TEST(Timeline, AShuffledPassNeverBeginsWithTheItemThePassBeforeEndedOn) {
         std::vector<int> every(static_cast<std::size_t>(n));
         std::iota(every.begin(), every.end(), 0);
         ASSERT_EQ(sorted, every);
-        if (p > 0) ASSERT_NE(shown[p].front(), shown[p - 1].back()) << "the same item twice in a row";
+        if (p > 0) {
+          ASSERT_NE(shown[p].front(), shown[p - 1].back()) << "the same item twice in a row";
+        }
       }
     }
   }
@@ -391,7 +404,8 @@ TEST(Timeline, WallclockUnplayableSlotShowsTheNextItem) {
   EXPECT_EQ(f.item_time, 0.0);
   EXPECT_TRUE(f.cut);
   EXPECT_EQ(f.sequence, seq + 2);
-  check(tl, {{20, 0, 0}});
+  // The next cycle: the first slot's item, and how far into it.
+  check(tl, {{20, 0, 0}, {22.5, 0, 2.5}});
 }
 
 TEST(Timeline, WallclockButtonsDetachUntilRestart) {
@@ -517,6 +531,9 @@ TEST(Timeline, EmptyPlaylistPlaysNothing) {
   tl.previous(t0 + 2);
   tl.restart(t0 + 2);
   EXPECT_EQ(at(tl, 3).item, -1);
+  // A playlist that arrives later (a hot reload) starts at its first item.
+  tl.replace(make({4, 6}), t0 + 4);
+  check(tl, {{4.5, 0, 0.5}, {9, 1, 1}});
 }
 
 TEST(CameraPath, TurntableStillAndFov) {

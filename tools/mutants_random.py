@@ -374,7 +374,10 @@ def main():
                     result, by = "timed out", ""
                 elif code == 0:
                     why = equivalents.get((path, original.strip(), new.strip()))
-                    result, by = ("equivalent", why) if why else ("SURVIVED", f"{len(chosen_tests)} tests ran")
+                    if why and why.startswith("killed by "):
+                        result, by = "killed", why  # by a tier the release build cannot be (ASan)
+                    else:
+                        result, by = ("equivalent", why) if why else ("SURVIVED", f"{len(chosen_tests)} tests ran")
                 else:
                     failed = re.findall(r"^\s+\d+ - (\S+)", open(os.path.join(logs, f"{ident}-tests.txt")).read(), re.M)
                     timeouts = "Timeout" in open(os.path.join(logs, f"{ident}-tests.txt")).read()

@@ -123,6 +123,13 @@ TEST(Playlist, Defaults) {
   EXPECT_EQ(it.line, 1);
 }
 
+TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
+  Playlist pl;
+  std::string error;
+  ASSERT_TRUE(parse_playlist("[[item]]\nscene = \"a.glb\"\nbackground = [0, 0.5, 1]\n", list, options(), pl, error)) << error;
+  EXPECT_EQ(pl.items.at(0).background, glm::vec3(0.0f, 0.5f, 1.0f));
+}
+
 TEST(Playlist, EveryKeySet) {
   Playlist pl;
   std::string error;

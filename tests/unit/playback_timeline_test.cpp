@@ -515,6 +515,74 @@ TEST(Timeline, ReplaceMakesEveryItemPlayableAgain) {
   check(tl, {{4.5, 1, 0.5}});
 }
 
+TEST(Timeline, ReplaceKeepsTheFirstItemThatNamesThePlayingScene) {
+  Timeline tl(make({4, 6, 10, 5}), t0, wall0);
+  ASSERT_EQ(at(tl, 21).item, 3);
+  Playlist twice = make({5, 6, 5});
+  twice.items[0].scene = twice.items[2].scene = "scene3.glb";
+  tl.replace(twice, t0 + 21);
+  check(tl, {{22, 0, 2}, {26, 1, 1}});
+}
+
+TEST(Timeline, ReplaceOfAWallclockScheduleBySequentialKeepsTheItemShown) {
+  Playlist wall = make({4, 6, 10});
+  wall.schedule = Schedule::wallclock;
+  Timeline tl(wall, t0, wall0);
+  ASSERT_EQ(at(tl, 5).item, 1);
+  tl.replace(make({4, 6, 10}), t0 + 5.5);
+  check(tl, {{6, 1, 2}, {11, 2, 1}});
+}
+
+TEST(Timeline, ReplaceOfAOneItemPlaylistGoesOnInTheSamePass) {
+  // Two seconds into a one-second item that loops: the third pass. A shuffled playlist that keeps
+  // the item goes on with the rest of its own third pass.
+  Timeline tl(make({1}), t0, wall0);
+  ASSERT_EQ(at(tl, 2.5).item, 0);
+  constexpr std::uint64_t seed = 3;
+  const auto order = passes(seed, 5, 3);
+  const auto& third = order[2];
+  const auto pos = static_cast<std::size_t>(std::find(third.begin(), third.end(), 0) - third.begin());
+  ASSERT_LT(pos, 4u) << "the seed must leave items after the kept one";
+  const std::vector<int> rest(third.begin() + static_cast<std::ptrdiff_t>(pos) + 1, third.end());
+  ASSERT_FALSE(std::equal(rest.begin(), rest.end(), order[0].begin() + static_cast<std::ptrdiff_t>(pos) + 1))
+      << "the seed must give the first and third passes different endings";
+  Playlist shuffled = make({1, 1, 1, 1, 1});
+  shuffled.shuffle = true;
+  shuffled.seed = seed;
+  tl.replace(shuffled, t0 + 2.5);
+  for (std::size_t j = 0; j < rest.size(); ++j) EXPECT_EQ(at(tl, 3.5 + static_cast<double>(j)).item, rest[j]) << j;
+}
+
+TEST(Timeline, WallclockButtonOnTheFirstItemHoldsItWhereItIs) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  check(tl, {{1, 0, 1}});
+  tl.pause(t0 + 1);
+  check(tl, {{3, 0, 1}});
+  tl.resume(t0 + 3);
+  check(tl, {{5, 0, 3}, {6, 1, 0}});
+}
+
+TEST(Timeline, WallclockJustBeforeTheEpochIsTheCyclesStart) {
+  // fmod of a tiny negative time plus the cycle rounds up to the cycle itself: that is position 0.
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, -1.0);
+  const Cue f = tl.at(t0 + 1, -1e-20);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_NEAR(f.item_time, 0, 1e-9);
+}
+
+TEST(Timeline, ReplaceOfAPlaylistThatDoesNotLoopPlaysTheRestOnce) {
+  Timeline tl(make({4, 6, 10}, 0, false), t0, wall0);
+  ASSERT_EQ(at(tl, 5).item, 1);
+  tl.replace(make({4, 6, 10}, 0, false), t0 + 5);
+  check(tl, {{6, 1, 2}, {11, 2, 1}});
+  EXPECT_FALSE(at(tl, 19).finished);
+  EXPECT_TRUE(at(tl, 21).finished);
+}
+
 TEST(Timeline, ReplaceShorterItemMovesOn) {
   Timeline tl(make({10, 10}), t0, wall0);
   at(tl, 7);

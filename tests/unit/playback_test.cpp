@@ -89,12 +89,14 @@ TEST(Playlist, ExampleFilePlaysAsWritten) {
 TEST(Playlist, TheScenesOwnCameraByIndex) {
   const Playlist pl = parse_ok(
       "[[item]]\nscene = \"a.glb\"\ncamera = { motion = \"file\", index = 2 }\n"
-      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"file\" }\n");
+      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"file\" }\n"
+      "[[item]]\nscene = \"c.glb\"\ncamera = { motion = \"file\", index = 0 }\n");
   EXPECT_EQ(pl.items.at(0).camera.motion, Motion::file);
   EXPECT_EQ(pl.items[0].camera.index, 2);
   EXPECT_EQ(camera_at(pl.items[0].camera, 3.0).file_index, 2);
   EXPECT_EQ(pl.items.at(1).camera.index, 0);  // the first camera when none is named
   EXPECT_EQ(camera_at(pl.items[1].camera, 0.0).file_index, 0);
+  EXPECT_EQ(pl.items.at(2).camera.index, 0);
   CameraPath turntable;
   EXPECT_EQ(camera_at(turntable, 1.0).file_index, -1);
 }
@@ -128,6 +130,17 @@ TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
   std::string error;
   ASSERT_TRUE(parse_playlist("[[item]]\nscene = \"a.glb\"\nbackground = [0, 0.5, 1]\n", list, options(), pl, error)) << error;
   EXPECT_EQ(pl.items.at(0).background, glm::vec3(0.0f, 0.5f, 1.0f));
+}
+
+TEST(Playlist, SeedZeroIsASeedLikeAnyOther) {
+  Playlist pl;
+  std::string error;
+  ASSERT_TRUE(
+      parse_playlist("shuffle = true\nseed = 0\n"
+                     "[[item]]\nscene = \"a.glb\"\n",
+                     list, options(), pl, error))
+      << error;
+  EXPECT_EQ(pl.seed, 0u);
 }
 
 TEST(Playlist, EveryKeySet) {
@@ -450,6 +463,22 @@ TEST(Playlist, MissingFile) {
   std::string error;
   EXPECT_FALSE(load_playlist("/nonexistent/list.toml", options(), pl, error));
   EXPECT_EQ(error, "/nonexistent/list.toml: cannot open the playlist (No such file or directory)");
+}
+
+TEST(Playlist, AFileOf64MiBIsReadAndOneByteMoreIsRefused) {
+  const std::string path = testing::TempDir() + "playlist_size_limit_" + std::to_string(getpid()) + ".toml";
+  for (const std::size_t size : {kMaxPlaylistBytes, kMaxPlaylistBytes + 1}) {
+    SCOPED_TRACE(size);
+    std::filesystem::resize_file((std::ofstream(path), path), size);  // a sparse file of NUL bytes
+    Playlist pl;
+    std::string error;
+    EXPECT_FALSE(load_playlist(path, options(), pl, error));
+    if (size == kMaxPlaylistBytes)  // read, then refused by the TOML parser
+      EXPECT_EQ(error.find("at most"), std::string::npos) << error;
+    else
+      EXPECT_EQ(error, path + ": the playlist is 64.0 MiB (67108865 bytes); at most 64.0 MiB (67108864 bytes) is read");
+  }
+  std::filesystem::remove(path);
 }
 
 TEST(Playlist, DirectoryIsNotAPlaylist) {

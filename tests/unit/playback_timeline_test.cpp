@@ -553,6 +553,15 @@ TEST(Timeline, ReplaceOfAOneItemPlaylistGoesOnInTheSamePass) {
   for (std::size_t j = 0; j < rest.size(); ++j) EXPECT_EQ(at(tl, 3.5 + static_cast<double>(j)).item, rest[j]) << j;
 }
 
+TEST(Timeline, WallclockNextDetachesAndShowsTheNextItem) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  check(tl, {{5, 1, 1}});
+  tl.next(t0 + 5);
+  check(tl, {{6, 2, 1}});
+}
+
 TEST(Timeline, WallclockButtonOnTheFirstItemHoldsItWhereItIs) {
   Playlist pl = make({4, 6, 10});
   pl.schedule = Schedule::wallclock;
@@ -602,6 +611,15 @@ TEST(Timeline, EmptyPlaylistPlaysNothing) {
   // A playlist that arrives later (a hot reload) starts at its first item.
   tl.replace(make({4, 6}), t0 + 4);
   check(tl, {{4.5, 0, 0.5}, {9, 1, 1}});
+}
+
+TEST(Timeline, EmptyWallclockPlaylistPlaysNothing) {
+  Playlist empty;
+  empty.schedule = Schedule::wallclock;
+  Timeline tl(empty, t0, wall0);
+  const Cue f = at(tl, 1);
+  EXPECT_EQ(f.item, -1);
+  EXPECT_EQ(f.next_item, -1);
 }
 
 TEST(CameraPath, TurntableStillAndFov) {

@@ -36,6 +36,16 @@ FAMILIES = {
     "lightfield": r"^(unit|gl)\.",
 }
 
+# Where the fast suite cannot reach a folder's code (the kms backend; hal's GPIO, V4L2 and evdev
+# backends), the vm tier's guests do. Their tests run last, for a mutant that every fast test let
+# through, one guest at a time and the shortest first, each only when its programs hold the file.
+VM_FAMILIES = {
+    "player/platform": ["vm.kms_play", "vm.board_play", "vm.kms_hotplug"],
+    "hal": ["vm.hal_hardware", "vm.board_play"],
+}
+# A guest's test is bounded by its own ctest TIMEOUT; this bounds the whole ctest call around it.
+VM_STAGE_LIMIT = 1500
+
 OPERATORS = ("relational", "arithmetic", "constant", "negation", "swap", "removal", "early-return")
 
 
@@ -278,6 +288,8 @@ def main():
     parser.add_argument("--tests", help="ctest regex (default: the folder's family)")
     parser.add_argument("--list-only", action="store_true", help="print the mutants, build nothing")
     parser.add_argument("--only", metavar="REGEX", help="of the N, only the mutants whose id matches (a survivor again)")
+    parser.add_argument("--no-vm", action="store_true",
+                        help="leave out the vm tier's guests (platform, hal), for a machine without QEMU")
     args = parser.parse_args()
     folder = args.folder.strip("/")
     if not os.path.isdir(os.path.join(ROOT, folder)):
@@ -333,10 +345,21 @@ def main():
     if run(ctest + ["--timeout", "900"], os.path.join(logs, "baseline-tests.txt")):
         sys.exit(f"mutants: the family's tests fail without any mutant ({logs}/baseline-tests.txt)")
     baseline = time.time() - started
+    vm_tests = [] if args.no_vm or args.tests else VM_FAMILIES.get(folder, [])
+    if vm_tests:
+        print(f"== the vm tier's tests, unmutated: {', '.join(vm_tests)}")
+        vm_log = os.path.join(logs, "baseline-vm.txt")
+        code = run(["ctest", "--test-dir", build, "-R", ctest_pattern(vm_tests), "--timeout", "900"], vm_log,
+                   timeout=VM_STAGE_LIMIT * len(vm_tests))
+        skipped = re.findall(r"^\s*\d+/\d+ Test\s+#\d+: (\S+) \.+\*+Skipped", open(vm_log).read(), re.M)
+        if code != 0 or skipped:
+            sys.exit(f"mutants: the vm tier does not pass unmutated ({vm_log}{': skipped ' + ', '.join(skipped) if skipped else ''});"
+                     " --no-vm leaves it out")
     limit = int(baseline * 3 + 120)
     # Only the tests whose programs hold the mutated file can notice it: a mutant in a file no test
     # program links (a module loaded at run time) runs the whole family.
     reached_by = reach(build, src, ["-R", tests, "-E", r"^(vm|fuzz)\."])
+    vm_reached_by = reach(build, src, ["-R", ctest_pattern(vm_tests)]) if vm_tests else {}
 
     results = []
     for number, (path, index, op, original, new) in enumerate(chosen, 1):
@@ -370,6 +393,15 @@ def main():
                                append=True)
                     if code != 0:
                         break
+                if code == 0:
+                    for name in vm_tests:
+                        if vm_reached_by.get(name) is not None and path not in vm_reached_by[name]:
+                            continue
+                        chosen_tests.append(name)
+                        code = run(["ctest", "--test-dir", build, "-R", ctest_pattern([name])],
+                                   os.path.join(logs, f"{ident}-tests.txt"), timeout=VM_STAGE_LIMIT, append=True)
+                        if code != 0:
+                            break
                 if code is None:
                     result, by = "timed out", ""
                 elif code == 0:

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 
 namespace {
@@ -342,6 +343,128 @@ TEST(LightfieldDisplayFile, AMontageBeyondATexturesSideIsRefusedByTheFile) {
               "this size make 16386x16384",
               0),
       0u);
+  // A quilt likewise, too wide or too tall alone: 64 columns of 257 pixels, or 64 rows.
+  const std::string quilt = "type = \"quilt\"\ncalibration = \"visual.json\"\n";
+  const std::string quilt_error =
+      "/tmp/lf-test/d.toml:4:13: view_size: expected a quilt of at most 16384 pixels per side (columns x width, rows x "
+      "height), got ";
+  EXPECT_EQ(parse_error(quilt + "quilt = \"64x1\"\nview_size = \"257x100\"\n"), quilt_error + "'257x100'");
+  EXPECT_EQ(parse_error(quilt + "quilt = \"1x64\"\nview_size = \"100x257\"\n"), quilt_error + "'100x257'");
+  // At the limit the calibration is what is missing, not the size.
+  EXPECT_EQ(parse_error(quilt + "quilt = \"64x64\"\nview_size = \"256x256\"\n").find("calibration: expected a readable"),
+            std::string("/tmp/lf-test/d.toml:2:15: ").size());
+}
+
+// Every list is checked for its length at both ends, every box on each of its three axes, and a
+// region given is the one used: a file that is wrong in its last axis or its last entry is refused
+// as surely as one wrong in its first.
+TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
+  const auto with = [](std::string_view from, std::string_view to) {
+    std::string text = kGood;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string roi = std::string(kGood) + "[roi]\n";
+  EXPECT_EQ(parse_error(roi + "physical_min = [-0.5, -0.4, -0.2, 0.0]\nphysical_max = [0.5, 0.4, 0.2]\n"),
+            "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected three numbers [x, y, z], got array");
+  EXPECT_EQ(parse_error(roi + "physical_min = [-0.5, -0.4]\nphysical_max = [0.5, 0.4, 0.2]\n"),
+            "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected three numbers [x, y, z], got array");
+  const std::string footprint_error =
+      "/tmp/lf-test/d.toml:12:13: modules.footprint: expected two numbers [x0, x1] with x0 < x1, got array";
+  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [-0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.0, 0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [0.5, 0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [0.5, -0.5]")), footprint_error);
+
+  // A box flat or inverted in any one axis, the others fine.
+  for (int axis = 0; axis < 3; ++axis) {
+    std::string max = "[1.0, 2.0, 3.0]";
+    max.replace(1 + 5 * axis, 3, "0.0");
+    EXPECT_EQ(parse_error(roi + "world_min = [0.0, 0.0, 0.0]\nworld_max = " + max + "\n"),
+              "/tmp/lf-test/d.toml:15:13: roi.world_max: expected a point above roi.world_min on every axis, got array")
+        << "axis " << axis;
+    std::string physical_max = "[0.5, 0.4, 0.2]";
+    physical_max.replace(1 + 5 * axis, 3, axis == 0 ? "-0.5" : axis == 1 ? "-0.4" : "-0.2");
+    EXPECT_EQ(parse_error(roi + "physical_min = [-0.5, -0.4, -0.2]\nphysical_max = " + physical_max + "\n"),
+              "/tmp/lf-test/d.toml:15:16: roi.physical_max: expected a point above roi.physical_min on every axis, got array")
+        << "axis " << axis;
+  }
+
+  lightfield::Display display;
+  std::string error;
+  ASSERT_TRUE(lightfield::parse_display(roi + "world_min = [-1.0, -2.0, -3.0]\nworld_max = [1.0, 2.0, 3.0]\n"
+                                              "physical_min = [-0.6, -0.3, -0.1]\nphysical_max = [0.7, 0.4, 0.2]\n",
+                                        "d.toml", display, error))
+      << error;
+  ASSERT_TRUE(display.modules.world_roi.has_value());
+  EXPECT_EQ(display.modules.world_roi->min, glm::dvec3(-1.0, -2.0, -3.0));
+  EXPECT_EQ(display.modules.world_roi->max, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(display.modules.physical_roi.min, glm::dvec3(-0.6, -0.3, -0.1));
+  EXPECT_EQ(display.modules.physical_roi.max, glm::dvec3(0.7, 0.4, 0.2));
+  ASSERT_TRUE(lightfield::parse_display(with("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.25]"), "d.toml", display, error))
+      << error;
+  EXPECT_EQ(display.modules.footprint, glm::dvec2(-0.5, 0.25));
+  EXPECT_FALSE(display.modules.world_roi.has_value()) << "a file without a world box after one with it";
+  // Without a box: the screen's rectangle, a quarter of its smaller side deep on each side.
+  EXPECT_EQ(display.modules.physical_roi.min, glm::dvec3(-0.8, -0.45, -0.225));
+  EXPECT_EQ(display.modules.physical_roi.max, glm::dvec3(0.8, 0.45, 0.225));
+
+  // One module, listed or spanned.
+  ASSERT_TRUE(lightfield::parse_display(with("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 1\nx = [0.3]"), "d.toml",
+                                        display, error))
+      << error;
+  EXPECT_EQ(display.modules.module_x, std::vector<double>{0.3});
+  ASSERT_TRUE(lightfield::parse_display(with("x_first = -1.0\nx_last = 1.0", "x_first = 0.3\nx_last = 0.3")
+                                            .replace(std::string(kGood).find("count = 4"), 9, "count = 1"),
+                                        "d.toml", display, error))
+      << error;
+  EXPECT_EQ(display.modules.module_x, std::vector<double>{0.3});
+  EXPECT_EQ(parse_error(with("distance = 2.5", "distance = 2.5\nhieght = 0.1")),
+            "/tmp/lf-test/d.toml:7:10: observer.hieght: unknown key (expected one of distance, height)");
+}
+
+// The calibration's ranges hold at their ends: what docs/light-field.md says is accepted is, and a
+// step past it is refused.
+TEST(LightfieldDisplayFile, CalibrationRangesHoldAtTheirEnds) {
+  // A valid calibration with some fields replaced or added.
+  const auto calibration = [](std::map<std::string, std::string> changed) {
+    std::map<std::string, std::string> fields{{"pitch", "50"}, {"slope", "-5"},    {"center", "0.1"},
+                                              {"DPI", "300"},  {"screenW", "100"}, {"screenH", "50"}};
+    for (const auto& [key, value] : changed) fields[key] = value;
+    std::string json;
+    for (const auto& [key, value] : fields) json += (json.empty() ? "{" : ", ") + ("\"" + key + "\": {\"value\": " + value + "}");
+    return json + "}";
+  };
+  const auto accepted = [&](const std::map<std::string, std::string>& changed, lightfield::Calibration& c) {
+    std::string error;
+    const bool ok = lightfield::parse_calibration(calibration(changed), "v.json", c, error);
+    EXPECT_TRUE(ok) << calibration(changed) << ": " << error;
+    return ok;
+  };
+  const auto refused = [&](const std::map<std::string, std::string>& changed) {
+    lightfield::Calibration c;
+    std::string error;
+    EXPECT_FALSE(lightfield::parse_calibration(calibration(changed), "v.json", c, error)) << calibration(changed);
+    return error;
+  };
+  lightfield::Calibration c;
+  EXPECT_TRUE(accepted({{"DPI", "1"}}, c));
+  EXPECT_EQ(c.dpi, 1.0);
+  EXPECT_EQ(refused({{"DPI", "0.999"}}), "v.json: DPI: expected an object {\"value\": number in 1..1e6}, got \"value\": 0.999");
+  EXPECT_TRUE(accepted({{"screenW", "16384"}, {"screenH", "1"}}, c));
+  EXPECT_EQ(c.screen_width, 16384);
+  EXPECT_EQ(c.screen_height, 1);
+  EXPECT_EQ(refused({{"screenW", "16385"}}),
+            "v.json: screenW: expected an object {\"value\": number (an integer in 1..16384)}, got \"value\": 16385");
+  EXPECT_TRUE(accepted({{"viewCone", "179.5"}, {"invView", "0"}, {"flipImageX", "1"}}, c));
+  EXPECT_EQ(c.view_cone_deg, 179.5);
+  EXPECT_FALSE(c.inverted_views);
+  EXPECT_TRUE(c.flip_x);
+  EXPECT_EQ(refused({{"viewCone", "180"}}),
+            "v.json: viewCone: expected an object {\"value\": number (degrees, in (0, 180))}, got \"value\": 180");
+  EXPECT_EQ(refused({{"invView", "2"}}), "v.json: invView: expected an object {\"value\": number (0 or 1)}, got \"value\": 2");
+  EXPECT_TRUE(accepted({{"slope", "-1e-6"}, {"pitch", "1e6"}}, c));
+  EXPECT_EQ(c.slope, -1e-6);
 }
 
 TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {

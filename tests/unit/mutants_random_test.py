@@ -3,6 +3,7 @@
 the same mutants every time. Run by ctest as unit.mutants_random (tools/mutants_random.py's own
 argument is the tree's root)."""
 import os
+import re
 import subprocess
 import sys
 import unittest
@@ -70,6 +71,17 @@ class Selection(unittest.TestCase):
 
     def test_a_test_name_becomes_an_exact_ctest_pattern(self):
         self.assertEqual(mutants_random.ctest_pattern(["gl.Platforms/A.b", "x(y)"]), r"^(gl\.Platforms/A\.b|x\(y\))$")
+
+
+class Families(unittest.TestCase):
+    def test_every_family_names_a_folder_of_code_and_every_vm_test_exists(self):
+        for folder in list(mutants_random.FAMILIES) + list(mutants_random.VM_FAMILIES):
+            self.assertTrue(os.path.isdir(os.path.join(ROOT, folder)), folder)
+        with open(os.path.join(ROOT, "tests", "vm", "CMakeLists.txt")) as f:
+            defined = {"vm." + name for name in re.findall(r"player_vm_test\(NAME (\w+)", f.read())}
+        for folder, tests in mutants_random.VM_FAMILIES.items():
+            self.assertTrue(tests, folder)
+            self.assertLessEqual(set(tests), defined, folder)
 
 
 if __name__ == "__main__":

@@ -41,6 +41,38 @@ TEST(LightfieldRoi, MapsTheWorldBoxUniformlyIntoThePhysicalBoxCentred) {
   EXPECT_FALSE(lightfield::roi_transform(Box{{0, 0, 0}, {1, 0, 1}}, physical));  // flat world box
 }
 
+// A transform nobody computed maps each space onto itself, whichever way it is asked.
+TEST(LightfieldRoi, ADefaultTransformIsTheIdentity) {
+  const lightfield::RoiTransform identity;
+  const glm::dvec3 p(1.25, -3.5, 7.0);
+  EXPECT_EQ(identity.to_physical(p), p);
+  EXPECT_EQ(identity.to_world(p), p);
+  EXPECT_EQ(identity.world_to_physical(), glm::dmat4(1.0));
+  EXPECT_EQ(identity.physical_to_world(), glm::dmat4(1.0));
+}
+
+// A scene flat along an axis (a single quad, a line, a point) still maps to a box: a thousandth of
+// its largest side along each flat axis, centred on it, and nothing added along the others.
+TEST(LightfieldRoi, AFlatSceneGetsAThinBoxAlongItsFlatAxesOnly) {
+  lightfield::ModulesDisplay display;
+  const Box quad{{-2.0, 0.0, 5.0}, {2.0, 1.0, 5.0}};
+  const Box quad_box = lightfield::world_roi(display, quad);
+  EXPECT_EQ(quad_box.min, glm::dvec3(-2.0, 0.0, 5.0 - 0.002));
+  EXPECT_EQ(quad_box.max, glm::dvec3(2.0, 1.0, 5.0 + 0.002));
+  const Box line{{0.0, -1.0, 0.0}, {0.0, 3.0, 0.0}};
+  const Box line_box = lightfield::world_roi(display, line);
+  EXPECT_EQ(line_box.min, glm::dvec3(-0.002, -1.0, -0.002));
+  EXPECT_EQ(line_box.max, glm::dvec3(0.002, 3.0, 0.002));
+  // A point: no side to take a thousandth of; a micrometre's thousandth then, still a box.
+  const Box point_box = lightfield::world_roi(display, Box{{1.0, 2.0, 3.0}, {1.0, 2.0, 3.0}});
+  EXPECT_EQ(point_box.min, glm::dvec3(1.0, 2.0, 3.0) - 0.5e-9);
+  EXPECT_EQ(point_box.max, glm::dvec3(1.0, 2.0, 3.0) + 0.5e-9);
+  EXPECT_TRUE(lightfield::roi_transform(point_box, Box{{-1, -1, -1}, {1, 1, 1}}));
+  // A region the display file gives is used as it is, flat or not.
+  display.world_roi = Box{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
+  EXPECT_EQ(lightfield::world_roi(display, quad).max, glm::dvec3(1.0));
+}
+
 TEST(LightfieldModules, PhysicalToImageOfKnownPoints) {
   const lightfield::ModulesDisplay display = c80();
   ASSERT_EQ(display.module_x.size(), 80u);
@@ -235,6 +267,29 @@ TEST(LightfieldQuilt, ViewsShareTheFocalPlaneWindowAndShowParallaxAroundIt) {
   const glm::dvec3 in_front = target + glm::dvec3(0, 0, 1), behind = target - glm::dvec3(0, 0, 1);
   EXPECT_GT(ndc(first, in_front).x, ndc(last, in_front).x);
   EXPECT_LT(ndc(first, behind).x, ndc(last, behind).x);
+  // Two views stand at the two ends of the cone; a single view in its middle.
+  EXPECT_NEAR(lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 0, 2).eye.x, first.eye.x, 1e-12);
+  EXPECT_NEAR(lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 1, 2).eye.x, last.eye.x, 1e-12);
+  EXPECT_NEAR(lightfield::quilt_view(eye, target, up, fov, aspect, 0.1, 50, 40, 0, 1).eye.x, 0.0, 1e-12);
+}
+
+// A subpixel exactly on a view boundary belongs to the view above it, and with inverted views the
+// fraction 1 - 0 = 1 still names the last view, never one past it.
+TEST(LightfieldQuilt, ABoundarySubpixelNamesAViewThatExists) {
+  lightfield::Calibration c;
+  c.screen_width = 1;
+  c.screen_height = 1;
+  lightfield::Interleave i;
+  i.pitch = 1.0;
+  i.center = 0.5;  // pixel (0, 0)'s centre u = 0.5: phase 0 exactly
+  i.views = 8;
+  EXPECT_EQ(lightfield::view_of_subpixel(i, c, 0, 0, 0), 0);
+  i.inverted_views = true;
+  EXPECT_EQ(lightfield::view_of_subpixel(i, c, 0, 0, 0), 7);
+  i.center = 0.5 - 3.0 / 8;  // phase 3/8, inverted 5/8: view 5
+  EXPECT_EQ(lightfield::view_of_subpixel(i, c, 0, 0, 0), 5);
+  i.inverted_views = false;
+  EXPECT_EQ(lightfield::view_of_subpixel(i, c, 0, 0, 0), 3);
 }
 
 // Display files: the examples in board/displays load as written; errors name file, line and key.

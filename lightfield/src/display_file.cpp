@@ -161,6 +161,7 @@ bool any(double) {
   return true;
 }
 
+// `out` is a fresh ModulesDisplay: parse_display starts from Display{}.
 void read_modules(const Fields& top, ModulesDisplay& out) {
   top.only({"type", "screen", "observer", "modules", "roi"});
   const Fields screen = top.table("screen", true);
@@ -171,13 +172,11 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
   const Fields observer = top.table("observer", true);
   observer.only({"distance", "height"});
   out.observer_distance = observer.number("distance", nullptr, "> 0 (the observer line's distance from the screen)", positive);
-  const double zero = 0.0;
-  out.observer_height = observer.number("height", &zero, "(the observer line's height)", any);
+  out.observer_height = observer.number("height", &out.observer_height, "(the observer line's height)", any);
 
   const Fields modules = top.table("modules", true);
   modules.only({"count", "x_first", "x_last", "x", "z", "resolution", "footprint"});
   out.module_z = modules.number("z", nullptr, "< 0 (the modules stand behind the screen)", negative);
-  out.module_x.clear();
   if (modules.has("x")) {
     out.module_x = modules.numbers("x", 1, kMaxModules, "1.." + std::to_string(kMaxModules) + " numbers, one x per module");
     if (modules.has("count") && modules.integer("count", 1, kMaxModules) != static_cast<long long>(out.module_x.size()))
@@ -215,7 +214,6 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
 
   const Fields roi = top.table("roi", false);
   roi.only({"world_min", "world_max", "physical_min", "physical_max"});
-  out.world_roi.reset();
   if (roi.has("world_min") || roi.has("world_max")) {
     Box world{roi.point("world_min"), roi.point("world_max")};
     for (int axis = 0; axis < 3; ++axis)
@@ -338,7 +336,7 @@ bool parse_calibration(std::string_view text, const std::string& source, Calibra
       !field("screenH", true, 0.0, height, side, "(an integer in 1..16384)") ||
       !field("invView", false, 0.0, inverted, flag, "(0 or 1)") || !field("flipImageX", false, 0.0, flip_x, flag, "(0 or 1)") ||
       !field("flipImageY", false, 0.0, flip_y, flag, "(0 or 1)") ||
-      !field("viewCone", false, 40.0, c.view_cone_deg, cone, "(degrees, in (0, 180))"))
+      !field("viewCone", false, c.view_cone_deg, c.view_cone_deg, cone, "(degrees, in (0, 180))"))
     return false;
   c.screen_width = static_cast<int>(width);
   c.screen_height = static_cast<int>(height);

@@ -233,7 +233,9 @@ TEST(LightfieldQuilt, InterleaveAssignsHandComputedViews) {
 }
 
 TEST(LightfieldQuilt, TilesRunFromTheBottomLeftAlongRows) {
-  lightfield::QuiltDisplay quilt;  // 5x9
+  lightfield::QuiltDisplay quilt;
+  quilt.columns = 5;
+  quilt.rows = 9;
   EXPECT_EQ(quilt.views(), 45);
   EXPECT_EQ(lightfield::tile_of(quilt, 0), glm::ivec2(0, 0));
   EXPECT_EQ(lightfield::tile_of(quilt, 4), glm::ivec2(4, 0));
@@ -346,6 +348,7 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
   std::string error;
   ASSERT_TRUE(lightfield::parse_display(kGood, "d.toml", display, error)) << error;
   EXPECT_EQ(display.views(), 4);
+  EXPECT_EQ(display.modules.observer_height, 0.0) << "the observer line's height when the file gives none";
   const auto replaced = [](std::string_view from, std::string_view to) {
     std::string text = kGood;
     text.replace(text.find(from), from.size(), to);
@@ -505,6 +508,8 @@ TEST(LightfieldDisplayFile, CalibrationRangesHoldAtTheirEnds) {
   lightfield::Calibration c;
   EXPECT_TRUE(accepted({{"DPI", "1"}}, c));
   EXPECT_EQ(c.dpi, 1.0);
+  EXPECT_EQ(c.view_cone_deg, 40.0) << "the view cone when the file gives none";
+  EXPECT_FALSE(c.inverted_views || c.flip_x || c.flip_y) << "the flags when the file gives none";
   EXPECT_EQ(refused({{"DPI", "0.999"}}), "v.json: DPI: expected an object {\"value\": number in 1..1e6}, got \"value\": 0.999");
   EXPECT_TRUE(accepted({{"screenW", "16384"}, {"screenH", "1"}}, c));
   EXPECT_EQ(c.screen_width, 16384);

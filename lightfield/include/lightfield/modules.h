@@ -16,19 +16,21 @@
 namespace lightfield {
 
 struct Box {
-  glm::dvec3 min{0.0}, max{0.0};
+  glm::dvec3 min{}, max{};
 };
 
+// Every field is the display file's (display_file.h), or the default it documents where the file may
+// omit it; zero until it is read.
 struct ModulesDisplay {
-  double screen_width = 1.6, screen_height = 0.9;  // the screen spans [-w/2, w/2] x [-h/2, h/2] at z = 0
-  double observer_distance = 2.5;                  // D
-  double observer_height = 0.0;                    // y_obs
-  std::vector<double> module_x;                    // physical x of each module, in order
-  double module_z = -1.2;                          // the modules' plane, behind the screen (< 0)
-  int width = 320, height = 180;                   // each module's image in pixels
-  glm::dvec2 footprint{-0.8, 0.8};                 // the screen x range each module's image spans
-  std::optional<Box> world_roi;                    // empty: the scene's bounds
-  Box physical_roi;                                // where the world box goes, around the screen
+  double screen_width{}, screen_height{};  // the screen spans [-w/2, w/2] x [-h/2, h/2] at z = 0
+  double observer_distance{};              // D
+  double observer_height{};                // y_obs
+  std::vector<double> module_x;            // physical x of each module, in order
+  double module_z{};                       // the modules' plane, behind the screen (< 0)
+  int width{}, height{};                   // each module's image in pixels
+  glm::dvec2 footprint{};                  // the screen x range each module's image spans
+  std::optional<Box> world_roi;            // empty: the scene's bounds
+  Box physical_roi;                        // where the world box goes, around the screen
 };
 
 // World to physical: the world box scaled uniformly to fit inside the physical box, centred in it.
@@ -47,15 +49,15 @@ std::optional<RoiTransform> roi_transform(const Box& world, const Box& physical)
 // of their largest side along any axis where they are flat (a single quad still maps to a box).
 Box world_roi(const ModulesDisplay& display, const Box& scene_bounds);
 
-// One module as the shaders see it, in physical units.
+// One module as the shaders see it, in physical units (module_of).
 struct Module {
-  double x = 0.0, z = -1.2;  // its centre of projection P (horizontally)
-  double observer_distance = 2.5, observer_height = 0.0, screen_height = 0.9;
-  double footprint0 = -0.8, footprint1 = 0.8;
-  int width = 320, height = 180;
+  double x{}, z{};  // its centre of projection P (horizontally)
+  double observer_distance{}, observer_height{}, screen_height{};
+  double footprint0{}, footprint1{};
+  int width{}, height{};
   // The physical z range it rasterises: the ROI's depth widened by that depth on each side, kept
   // strictly between the module's plane and the observer line, where the mapping is defined.
-  double z_front = 0.5, z_back = -0.5;
+  double z_front{}, z_back{};
 };
 Module module_of(const ModulesDisplay& display, int k);
 

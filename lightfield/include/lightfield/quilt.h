@@ -9,30 +9,32 @@
 
 namespace lightfield {
 
-// The fields of visual.json that the interleave uses.
+// The fields of visual.json that the interleave uses. The file must give all but the flags and the
+// view cone; a field it omits keeps the value here (parse_calibration).
 struct Calibration {
-  double pitch = 0.0, slope = 0.0, center = 0.0, dpi = 0.0;
-  int screen_width = 0, screen_height = 0;
+  double pitch{}, slope{}, center{}, dpi{};
+  int screen_width{}, screen_height{};
   bool inverted_views = false;  // invView
   bool flip_x = false, flip_y = false;
   double view_cone_deg = 40.0;
 };
 
+// Every field is the display file's (display_file.h); zero until it is read.
 struct QuiltDisplay {
   Calibration calibration;
-  int columns = 5, rows = 9;
-  int view_width = 420, view_height = 560;
+  int columns{}, rows{};
+  int view_width{}, view_height{};
   int views() const { return columns * rows; }
 };
 
-// The interleave's constants for one calibration.
+// The interleave's constants for one calibration (interleave_of).
 struct Interleave {
-  double pitch = 0.0;     // p = pitch * screenW / DPI * cos(atan(1 / slope))
-  double tilt = 0.0;      // t = screenH / (screenW * slope), negated when flipImageX
-  double subpixel = 0.0;  // s = 1 / (3 * screenW)
-  double center = 0.0;
+  double pitch{};     // p = pitch * screenW / DPI * cos(atan(1 / slope))
+  double tilt{};      // t = screenH / (screenW * slope), negated when flipImageX
+  double subpixel{};  // s = 1 / (3 * screenW)
+  double center{};
   bool inverted_views = false;
-  int views = 1;
+  int views{};
 };
 Interleave interleave_of(const Calibration& calibration, int views);
 

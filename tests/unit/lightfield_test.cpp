@@ -38,6 +38,11 @@ TEST(LightfieldRoi, MapsTheWorldBoxUniformlyIntoThePhysicalBoxCentred) {
   EXPECT_NEAR(glm::length(glm::dvec3(by_matrix) - t->to_physical(p)), 0.0, 1e-12);
   const glm::dvec4 back = t->physical_to_world() * by_matrix;
   EXPECT_NEAR(glm::length(glm::dvec3(back) - p), 0.0, 1e-12);
+  // The two matrices are each other's inverse as 4x4 matrices, w row included: the shaders take
+  // them as they are.
+  const glm::dmat4 round_trip = t->physical_to_world() * t->world_to_physical();
+  for (int column = 0; column < 4; ++column)
+    for (int row = 0; row < 4; ++row) EXPECT_NEAR(round_trip[column][row], column == row ? 1.0 : 0.0, 1e-12) << column << row;
   EXPECT_FALSE(lightfield::roi_transform(Box{{0, 0, 0}, {1, 0, 1}}, physical));  // flat world box
 }
 
@@ -49,6 +54,11 @@ TEST(LightfieldRoi, ADefaultTransformIsTheIdentity) {
   EXPECT_EQ(identity.to_world(p), p);
   EXPECT_EQ(identity.world_to_physical(), glm::dmat4(1.0));
   EXPECT_EQ(identity.physical_to_world(), glm::dmat4(1.0));
+  // Likewise a quilt view nobody computed: the camera at the origin, projecting as it stands.
+  const lightfield::OffAxisView view;
+  EXPECT_EQ(view.view, glm::dmat4(1.0));
+  EXPECT_EQ(view.projection, glm::dmat4(1.0));
+  EXPECT_EQ(view.eye, glm::dvec3(0.0));
 }
 
 // A scene flat along an axis (a single quad, a line, a point) still maps to a box: a thousandth of
@@ -110,6 +120,9 @@ TEST(LightfieldModules, EachPixelsRayPassesThroughThePointItShows) {
       // The observer point, S and the module are on one line seen from above (horizontal parallax).
       const glm::dvec2 to_s(s.x - m.x, s.z - m.z), to_o(o.x - m.x, o.z - m.z);
       EXPECT_NEAR(to_s.x * to_o.y - to_s.y * to_o.x, 0.0, 1e-9);
+      // On the module's plane and on the observer line the mapping is not defined: no image.
+      EXPECT_FALSE(lightfield::physical_to_image(m, {s.x, s.y, m.z}));
+      EXPECT_FALSE(lightfield::physical_to_image(m, o));
       for (double t : {0.1, 0.4, 0.7, 1.3, 1.6}) {  // points between S and O, and behind the screen
         const glm::dvec3 q = o + t * (s - o);
         if (q.z <= m.z + 1e-6) continue;
@@ -477,6 +490,14 @@ TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
                                         "d.toml", display, error))
       << error;
   EXPECT_EQ(display.modules.module_x, std::vector<double>{0.3});
+  EXPECT_EQ(parse_error(with("count = 4", "x = [0.0, \"0.5\"]")),
+            "/tmp/lf-test/d.toml:8:11: modules.x: expected 1..1024 numbers, one x per module, got '0.5'");
+  EXPECT_EQ(parse_error(with("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 0\nx = [0.3]")),
+            "/tmp/lf-test/d.toml:8:9: modules.count: expected an integer in 1..1024, got 0");
+  EXPECT_EQ(parse_error(with("count = 4\n", "")).substr(0, 76),
+            "/tmp/lf-test/d.toml:7:1: modules.count: expected an integer in 1..1024, got ");
+  EXPECT_EQ(parse_error(roi + "world_max = [1.0, 2.0, 3.0]\n"),
+            "/tmp/lf-test/d.toml:13:1: roi.world_min: expected three numbers [x, y, z], got nothing");
   EXPECT_EQ(parse_error(with("distance = 2.5", "distance = 2.5\nhieght = 0.1")),
             "/tmp/lf-test/d.toml:7:10: observer.hieght: unknown key (expected one of distance, height)");
 }
@@ -525,6 +546,32 @@ TEST(LightfieldDisplayFile, CalibrationRangesHoldAtTheirEnds) {
   EXPECT_EQ(refused({{"invView", "2"}}), "v.json: invView: expected an object {\"value\": number (0 or 1)}, got \"value\": 2");
   EXPECT_TRUE(accepted({{"slope", "-1e-6"}, {"pitch", "1e6"}}, c));
   EXPECT_EQ(c.slope, -1e-6);
+  EXPECT_EQ(refused({{"pitch", "0"}}), "v.json: pitch: expected an object {\"value\": number in (0, 1e6]}, got \"value\": 0");
+  EXPECT_TRUE(accepted({{"center", "1e6"}}, c));
+  EXPECT_TRUE(accepted({{"center", "-1e6"}}, c));
+  EXPECT_EQ(c.center, -1e6);
+  EXPECT_EQ(refused({{"center", "1000000.5"}}),
+            "v.json: center: expected an object {\"value\": number of magnitude at most 1e6}, got \"value\": 1000000.5");
+}
+
+// A display file or calibration as large as the limit loads; a byte more is refused before it is
+// parsed, with both sizes named.
+TEST(LightfieldDisplayFile, AFileAtTheSizeLimitLoadsAndOneByteMoreIsRefused) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lightfield-size-test";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "d.toml").string();
+  std::string text = std::string(kGood) + "# ";
+  text += std::string(lightfield::kMaxDisplayFileBytes - text.size() - 1, 'x') + "\n";
+  ASSERT_EQ(text.size(), lightfield::kMaxDisplayFileBytes);
+  std::ofstream(path, std::ios::binary) << text;
+  lightfield::Display display;
+  std::string error;
+  EXPECT_TRUE(lightfield::load_display(path, display, error)) << error;
+  EXPECT_EQ(display.views(), 4);
+  std::ofstream(path, std::ios::binary) << text << "\n";
+  EXPECT_FALSE(lightfield::load_display(path, display, error));
+  EXPECT_EQ(error, path + ": the display file is 1.0 MiB (1048577 bytes); at most 1.0 MiB (1048576 bytes) is read");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(LightfieldDisplayFile, QuiltCalibrationErrorsNameTheField) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -155,6 +156,26 @@ TEST(LightfieldModules, ClipPositionPutsEachVertexOnItsExactPixelAndOrdersDepthT
     EXPECT_LT(clip_nearer.z / clip_nearer.w, clip.z / clip.w);  // nearer the observer: in front
     EXPECT_GT(clip.z / clip.w, -1.0);
     EXPECT_LT(clip.z / clip.w, 1.0);
+  }
+}
+
+// A region as deep as the whole space between the modules and the observers: the depth range is
+// cut 2% of that distance short of either end, where the mapping is still finite, and every
+// point of the region between those ends lands inside the depth range with a finite image.
+TEST(LightfieldModules, ADeepRegionsDepthRangeStopsShortOfTheModulesAndTheObservers) {
+  lightfield::ModulesDisplay display = c80();
+  display.physical_roi.min.z = display.module_z + 1e-3;
+  display.physical_roi.max.z = display.observer_distance - 1e-3;
+  const Module m = lightfield::module_of(display, 40);
+  const double margin = 0.02 * (display.observer_distance - display.module_z);
+  EXPECT_DOUBLE_EQ(m.z_back, display.module_z + margin);
+  EXPECT_DOUBLE_EQ(m.z_front, display.observer_distance - margin);
+  for (const double z : {m.z_back, m.z_front}) {
+    const glm::dvec4 clip = lightfield::clip_position(m, {0.1, 0.2, z});
+    ASSERT_GT(clip.w, 0.0);
+    EXPECT_TRUE(std::isfinite(clip.x / clip.w) && std::isfinite(clip.y / clip.w));
+    EXPECT_NEAR(std::abs(clip.z / clip.w), 1.0, 1e-9);
+    EXPECT_TRUE(lightfield::physical_to_image(m, {0.1, 0.2, z}));
   }
 }
 
@@ -421,6 +442,8 @@ TEST(LightfieldDisplayFile, AMontageBeyondATexturesSideIsRefusedByTheFile) {
       "height), got ";
   EXPECT_EQ(parse_error(quilt + "quilt = \"64x1\"\nview_size = \"257x100\"\n"), quilt_error + "'257x100'");
   EXPECT_EQ(parse_error(quilt + "quilt = \"1x64\"\nview_size = \"100x257\"\n"), quilt_error + "'100x257'");
+  EXPECT_EQ(parse_error(quilt + "quilt = \"5x9\"\nview_size = \"420x560\"\nview_cone = 40\n"),
+            "/tmp/lf-test/d.toml:5:13: view_cone: unknown key (expected one of type, calibration, quilt, view_size)");
   // At the limit the calibration is what is missing, not the size.
   EXPECT_EQ(parse_error(quilt + "quilt = \"64x64\"\nview_size = \"256x256\"\n").find("calibration: expected a readable"),
             std::string("/tmp/lf-test/d.toml:2:15: ").size());

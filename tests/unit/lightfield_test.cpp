@@ -377,17 +377,18 @@ z = -1.2
 resolution = "64x36"
 )";
 
+// kGood, or `text`, with the first `from` replaced by `to`.
+std::string replaced(std::string_view from, std::string_view to, std::string text = kGood) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
 TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
   lightfield::Display display;
   std::string error;
   ASSERT_TRUE(lightfield::parse_display(kGood, "d.toml", display, error)) << error;
   EXPECT_EQ(display.views(), 4);
   EXPECT_EQ(display.modules.observer_height, 0.0) << "the observer line's height when the file gives none";
-  const auto replaced = [](std::string_view from, std::string_view to) {
-    std::string text = kGood;
-    text.replace(text.find(from), from.size(), to);
-    return text;
-  };
   EXPECT_EQ(parse_error(replaced("count = 4", "count = 0")),
             "/tmp/lf-test/d.toml:8:9: modules.count: expected an integer in 1..1024, got 0");
   EXPECT_EQ(
@@ -416,20 +417,16 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
 // Every module's image goes into one montage texture: module count times resolution is checked in
 // the file, before anything is allocated, where a terabyte montage once reached the GPU.
 TEST(LightfieldDisplayFile, AMontageBeyondATexturesSideIsRefusedByTheFile) {
-  const auto replaced = [](std::string text, std::string_view from, std::string_view to) {
-    text.replace(text.find(from), from.size(), to);
-    return text;
-  };
-  const std::string huge = replaced(replaced(kGood, "count = 4", "count = 1024"), "\"64x36\"", "\"16384x16384\"");
+  const std::string huge = replaced("\"64x36\"", "\"16384x16384\"", replaced("count = 4", "count = 1024"));
   EXPECT_EQ(parse_error(huge),
             "/tmp/lf-test/d.toml:12:14: modules.resolution: expected a montage of at most 16384 pixels per side: 1024 modules "
             "of this size make 524288x524288 (32x32 modules), got '16384x16384'");
   // Just within: 4 modules of 8192x8192 make a 16384x16384 montage; one pixel wider is refused.
   lightfield::Display display;
   std::string error;
-  EXPECT_TRUE(lightfield::parse_display(replaced(kGood, "\"64x36\"", "\"8192x8192\""), "d.toml", display, error)) << error;
+  EXPECT_TRUE(lightfield::parse_display(replaced("\"64x36\"", "\"8192x8192\""), "d.toml", display, error)) << error;
   EXPECT_EQ(
-      parse_error(replaced(kGood, "\"64x36\"", "\"8193x8192\""))
+      parse_error(replaced("\"64x36\"", "\"8193x8192\""))
           .rfind(
               "/tmp/lf-test/d.toml:12:14: modules.resolution: expected a montage of at most 16384 pixels per side: 4 modules of "
               "this size make 16386x16384",
@@ -453,11 +450,6 @@ TEST(LightfieldDisplayFile, AMontageBeyondATexturesSideIsRefusedByTheFile) {
 // region given is the one used: a file that is wrong in its last axis or its last entry is refused
 // as surely as one wrong in its first.
 TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
-  const auto with = [](std::string_view from, std::string_view to) {
-    std::string text = kGood;
-    text.replace(text.find(from), from.size(), to);
-    return text;
-  };
   const std::string roi = std::string(kGood) + "[roi]\n";
   EXPECT_EQ(parse_error(roi + "physical_min = [-0.5, -0.4, -0.2, 0.0]\nphysical_max = [0.5, 0.4, 0.2]\n"),
             "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected three numbers [x, y, z], got array");
@@ -465,10 +457,10 @@ TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
             "/tmp/lf-test/d.toml:14:16: roi.physical_min: expected three numbers [x, y, z], got array");
   const std::string footprint_error =
       "/tmp/lf-test/d.toml:12:13: modules.footprint: expected two numbers [x0, x1] with x0 < x1, got array";
-  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [-0.5]")), footprint_error);
-  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.0, 0.5]")), footprint_error);
-  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [0.5, 0.5]")), footprint_error);
-  EXPECT_EQ(parse_error(with("z = -1.2", "z = -1.2\nfootprint = [0.5, -0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(replaced("z = -1.2", "z = -1.2\nfootprint = [-0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(replaced("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.0, 0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(replaced("z = -1.2", "z = -1.2\nfootprint = [0.5, 0.5]")), footprint_error);
+  EXPECT_EQ(parse_error(replaced("z = -1.2", "z = -1.2\nfootprint = [0.5, -0.5]")), footprint_error);
 
   // A box flat or inverted in any one axis, the others fine.
   for (int axis = 0; axis < 3; ++axis) {
@@ -495,7 +487,7 @@ TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
   EXPECT_EQ(display.modules.world_roi->max, glm::dvec3(1.0, 2.0, 3.0));
   EXPECT_EQ(display.modules.physical_roi.min, glm::dvec3(-0.6, -0.3, -0.1));
   EXPECT_EQ(display.modules.physical_roi.max, glm::dvec3(0.7, 0.4, 0.2));
-  ASSERT_TRUE(lightfield::parse_display(with("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.25]"), "d.toml", display, error))
+  ASSERT_TRUE(lightfield::parse_display(replaced("z = -1.2", "z = -1.2\nfootprint = [-0.5, 0.25]"), "d.toml", display, error))
       << error;
   EXPECT_EQ(display.modules.footprint, glm::dvec2(-0.5, 0.25));
   EXPECT_FALSE(display.modules.world_roi.has_value()) << "a file without a world box after one with it";
@@ -504,24 +496,24 @@ TEST(LightfieldDisplayFile, ListsAndBoxesAreCheckedInFullAndReadAsWritten) {
   EXPECT_EQ(display.modules.physical_roi.max, glm::dvec3(0.8, 0.45, 0.225));
 
   // One module, listed or spanned.
-  ASSERT_TRUE(lightfield::parse_display(with("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 1\nx = [0.3]"), "d.toml",
+  ASSERT_TRUE(lightfield::parse_display(replaced("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 1\nx = [0.3]"), "d.toml",
                                         display, error))
       << error;
   EXPECT_EQ(display.modules.module_x, std::vector<double>{0.3});
-  ASSERT_TRUE(lightfield::parse_display(with("x_first = -1.0\nx_last = 1.0", "x_first = 0.3\nx_last = 0.3")
-                                            .replace(std::string(kGood).find("count = 4"), 9, "count = 1"),
-                                        "d.toml", display, error))
+  ASSERT_TRUE(lightfield::parse_display(
+      replaced("count = 4", "count = 1", replaced("x_first = -1.0\nx_last = 1.0", "x_first = 0.3\nx_last = 0.3")), "d.toml",
+      display, error))
       << error;
   EXPECT_EQ(display.modules.module_x, std::vector<double>{0.3});
-  EXPECT_EQ(parse_error(with("count = 4", "x = [0.0, \"0.5\"]")),
+  EXPECT_EQ(parse_error(replaced("count = 4", "x = [0.0, \"0.5\"]")),
             "/tmp/lf-test/d.toml:8:11: modules.x: expected 1..1024 numbers, one x per module, got '0.5'");
-  EXPECT_EQ(parse_error(with("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 0\nx = [0.3]")),
+  EXPECT_EQ(parse_error(replaced("count = 4\nx_first = -1.0\nx_last = 1.0", "count = 0\nx = [0.3]")),
             "/tmp/lf-test/d.toml:8:9: modules.count: expected an integer in 1..1024, got 0");
-  EXPECT_EQ(parse_error(with("count = 4\n", "")).substr(0, 76),
+  EXPECT_EQ(parse_error(replaced("count = 4\n", "")).substr(0, 76),
             "/tmp/lf-test/d.toml:7:1: modules.count: expected an integer in 1..1024, got ");
   EXPECT_EQ(parse_error(roi + "world_max = [1.0, 2.0, 3.0]\n"),
             "/tmp/lf-test/d.toml:13:1: roi.world_min: expected three numbers [x, y, z], got nothing");
-  EXPECT_EQ(parse_error(with("distance = 2.5", "distance = 2.5\nhieght = 0.1")),
+  EXPECT_EQ(parse_error(replaced("distance = 2.5", "distance = 2.5\nhieght = 0.1")),
             "/tmp/lf-test/d.toml:7:10: observer.hieght: unknown key (expected one of distance, height)");
 }
 

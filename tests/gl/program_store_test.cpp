@@ -171,6 +171,58 @@ TEST_P(ProgramStore, ADamagedOrRefusedFileIsCompiledAnewAndReplaced) {
   }
 }
 
+// A save cut short (the disk full mid-write, here /dev/full in the partial file's place) fails with
+// the file named, leaves nothing behind, neither the partial file nor one under the name load reads,
+// and the next start compiles.
+TEST_P(ProgramStore, ASaveThatFailsMidWriteLeavesNothing) {
+  std::string reason, error;
+  const std::unique_ptr<gl::ProgramStore> store = gl::ProgramStore::open(dir_, session_->caps(), reason);
+  ASSERT_TRUE(store) << reason;
+  const std::vector<gl::StageSource> sources = fill_program(kRed);
+  const gl::Program program = gl::link_program(sources, error, true);
+  ASSERT_TRUE(program) << error;
+  const std::string path = store->path_for(sources);
+  const std::string partial = path + ".partial." + std::to_string(getpid());
+  fs::create_symlink("/dev/full", partial);
+  EXPECT_FALSE(store->save(sources, program, error));
+  EXPECT_EQ(error, "cannot write " + partial);
+  EXPECT_FALSE(fs::exists(fs::symlink_status(partial)));
+  EXPECT_FALSE(fs::exists(path));
+  const auto next = start();
+  get(*next, kRed);
+  EXPECT_EQ(next->compiled(), 1u);
+  EXPECT_EQ(next->store()->loaded(), 0u);
+  // A save that works leaves the one file, nothing partial.
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    ++files;
+    EXPECT_EQ(entry.path().extension(), ".bin") << entry.path();
+  }
+  EXPECT_EQ(files, 1u);
+}
+
+// A whole, valid file under another program's name (as a collision of the file names' hash would
+// leave it) is refused by the second key in its header: compiled anew, never drawn with.
+TEST_P(ProgramStore, AValidFileUnderAnotherProgramsNameIsNeverLoaded) {
+  const auto first = start();
+  get(*first, kRed);
+  const std::string red = file_of(*first, kRed), green = file_of(*first, kGreen);
+  fs::copy_file(red, green);
+  const auto next = start();
+  const gl::Program* program = get(*next, kGreen);
+  ASSERT_TRUE(program);
+  EXPECT_EQ(next->store()->loaded(), 0u);
+  EXPECT_EQ(next->store()->rejected(), 1u);
+  EXPECT_EQ(next->compiled(), 1u);
+  EXPECT_EQ(draw(*program), kGreenBytes);
+  // Sources that differ only in their last bytes, or only in a stage's type, are other programs too.
+  std::vector<gl::StageSource> tail = fill_program(kGreen), type = fill_program(kGreen);
+  tail[1].text += "//x";
+  std::swap(type[0].type, type[1].type);
+  EXPECT_NE(next->store()->path_for(tail), green);
+  EXPECT_NE(next->store()->path_for(type), green);
+}
+
 // The folder stays bounded: opening it removes the least recently used files beyond the limit, and
 // a program loaded counts as used.
 TEST_P(ProgramStore, OpeningRemovesTheLeastRecentlyUsedFilesBeyondTheLimit) {

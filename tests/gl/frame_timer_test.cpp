@@ -17,13 +17,8 @@ namespace {
 
 using Times = gl::FrameTimer::Times;
 
-class FrameTimer : public ::testing::TestWithParam<std::string> {
+class FrameTimer : public test::SessionTest {
  protected:
-  void SetUp() override {
-    std::string error;
-    session_ = test::open_session(GetParam(), 64, 48, error);
-    ASSERT_TRUE(session_) << error;
-  }
   // Some work for the GPU, so that a pass is more than two stamps back to back.
   static void work() {
     const GLfloat colour[4] = {0.2f, 0.4f, 0.6f, 1.0f};
@@ -41,8 +36,6 @@ class FrameTimer : public ::testing::TestWithParam<std::string> {
       }
     }
   }
-
-  std::unique_ptr<gl::Session> session_;
 };
 
 // Serialised on the CPU clock: a pass that slept holds at least that sleep, in the slot of the pass
@@ -66,7 +59,9 @@ TEST_P(FrameTimer, SerialisedPassesGetTheirOwnTimesInTheirOwnSlots) {
     timer.end_frame();
     ASSERT_TRUE(timer.wait(times));
     expect_marked_only(times, {5, 2, 9});
-    if (slow == 2) EXPECT_GE(times[9], 30.0) << "the sleep came after pass 2's mark: it belongs to pass 9";
+    if (slow == 2) {
+      EXPECT_GE(times[9], 30.0) << "the sleep came after pass 2's mark: it belongs to pass 9";
+    }
   }
   EXPECT_FALSE(timer.wait(times)) << "a frame's times are handed over once";
 }

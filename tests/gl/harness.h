@@ -23,6 +23,17 @@ inline std::unique_ptr<gl::Session> open_session(const std::string& platform_nam
   return gl::Session::open(options, error);
 }
 
+// A test run on each platform (its parameter) with a 64x48 session open.
+class SessionTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    std::string error;
+    session_ = open_session(GetParam(), 64, 48, error);
+    ASSERT_TRUE(session_) << error;
+  }
+  std::unique_ptr<gl::Session> session_;
+};
+
 struct Harness {
   std::unique_ptr<gl::Session> session;  // first: everything below goes before its context
   platform::Platform* platform = nullptr;

@@ -13,27 +13,28 @@ namespace {
 
 using IsObject = GLboolean (*)(GLuint);
 
-class GlObjects : public ::testing::TestWithParam<std::string> {
+class GlObjects : public test::SessionTest {
  protected:
-  void SetUp() override {
-    std::string error;
-    session_ = test::open_session(GetParam(), 64, 48, error);
-    ASSERT_TRUE(session_) << error;
-  }
   IsObject is(const char* name) const {
     auto function = reinterpret_cast<IsObject>(session_->platform().proc_address(name));
     EXPECT_NE(function, nullptr) << name;
     return function;
   }
 
-  // The life of one kind of owner: `make` gives a fresh owner whose object exists (bound once where
-  // GL makes the object only then); `alive` asks the driver whether a name is an object.
+  // The life of one kind of owner: `make` gives a fresh owner, `use` makes its name an object where
+  // GL makes the object only when it is first bound or used, and `alive` asks the driver whether a
+  // name is an object.
   template <typename Owner>
-  void expect_owned(const std::function<Owner()>& make, IsObject alive) {
+  void expect_owned(Owner (*make)(), const std::function<void(GLuint)>& use, IsObject alive) {
     ASSERT_NE(alive, nullptr);
+    const auto made = [&] {
+      Owner owner = make();
+      use(owner.id());
+      return owner;
+    };
     GLuint first = 0, second = 0;
     {
-      Owner owner = make();
+      Owner owner = made();
       first = owner.id();
       ASSERT_NE(first, 0u);
       EXPECT_TRUE(owner);
@@ -52,14 +53,14 @@ class GlObjects : public ::testing::TestWithParam<std::string> {
       assigned = std::move(same);  // onto itself: kept
       EXPECT_EQ(assigned.id(), first);
       EXPECT_TRUE(alive(first));
-      assigned = make();  // assigned over: the old object goes
+      assigned = made();  // assigned over: the old object goes
       second = assigned.id();
       EXPECT_NE(second, first);
       EXPECT_FALSE(alive(first));
       EXPECT_TRUE(alive(second));
     }
     EXPECT_FALSE(alive(second)) << "destroyed with its owner";
-    Owner reset = make();
+    Owner reset = made();
     const GLuint third = reset.id();
     reset.reset();
     EXPECT_FALSE(reset);
@@ -68,56 +69,53 @@ class GlObjects : public ::testing::TestWithParam<std::string> {
     EXPECT_FALSE(reset);
     EXPECT_EQ(gl::api.GetError(), static_cast<GLenum>(GL_NO_ERROR));
   }
-
-  std::unique_ptr<gl::Session> session_;
 };
 
+gl::Program create_program() {
+  return gl::Program(gl::api.CreateProgram());
+}
+gl::Shader create_shader() {
+  return gl::Shader(gl::api.CreateShader(GL_FRAGMENT_SHADER));
+}
+void created(GLuint) {}
+
 TEST_P(GlObjects, EachOwnerDeletesItsObjectOnceAndAMovedFromOwnerNothing) {
-  expect_owned<gl::Buffer>(
-      [] {
-        gl::Buffer buffer = gl::make_buffer();
-        gl::api.BindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  expect_owned(
+      gl::make_buffer,
+      [](GLuint id) {
+        gl::api.BindBuffer(GL_ARRAY_BUFFER, id);
         gl::api.BindBuffer(GL_ARRAY_BUFFER, 0);
-        return buffer;
       },
       is("glIsBuffer"));
-  expect_owned<gl::Texture>(
-      [] {
-        gl::Texture texture = gl::make_texture();
-        gl::api.BindTexture(GL_TEXTURE_2D, texture.id());
+  expect_owned(
+      gl::make_texture,
+      [](GLuint id) {
+        gl::api.BindTexture(GL_TEXTURE_2D, id);
         gl::api.BindTexture(GL_TEXTURE_2D, 0);
-        return texture;
       },
       is("glIsTexture"));
-  expect_owned<gl::Framebuffer>(
-      [this] {
-        gl::Framebuffer framebuffer = gl::make_framebuffer();
-        gl::api.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  expect_owned(
+      gl::make_framebuffer,
+      [this](GLuint id) {
+        gl::api.BindFramebuffer(GL_FRAMEBUFFER, id);
         gl::api.BindFramebuffer(GL_FRAMEBUFFER, session_->platform().framebuffer());
-        return framebuffer;
       },
       is("glIsFramebuffer"));
-  expect_owned<gl::VertexArray>(
-      [] {
-        gl::VertexArray array = gl::make_vertex_array();
-        gl::api.BindVertexArray(array.id());
+  expect_owned(
+      gl::make_vertex_array,
+      [](GLuint id) {
+        gl::api.BindVertexArray(id);
         gl::api.BindVertexArray(0);
-        return array;
       },
       is("glIsVertexArray"));
-  expect_owned<gl::Program>([] { return gl::Program(gl::api.CreateProgram()); }, is("glIsProgram"));
-  expect_owned<gl::Shader>([] { return gl::Shader(gl::api.CreateShader(GL_FRAGMENT_SHADER)); }, is("glIsShader"));
+  expect_owned(create_program, created, is("glIsProgram"));
+  expect_owned(create_shader, created, is("glIsShader"));
   if (session_->caps().timer_query) {
     // A query name is an object once it has been used.
     IsObject is_query = is("glIsQuery");
     if (is_query == nullptr) is_query = is("glIsQueryEXT");
-    expect_owned<gl::Query>(
-        [] {
-          gl::Query query = gl::make_query();
-          gl::api.QueryCounter(query.id(), GL_TIMESTAMP_EXT);
-          return query;
-        },
-        is_query);
+    expect_owned(
+        gl::make_query, [](GLuint id) { gl::api.QueryCounter(id, GL_TIMESTAMP_EXT); }, is_query);
   }
 }
 

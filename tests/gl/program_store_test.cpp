@@ -32,12 +32,11 @@ std::vector<gl::StageSource> fill_program(const char* colour) {
 const char* const kRed = "vec4(1.0, 0.0, 0.0, 1.0)";
 const char* const kGreen = "vec4(0.0, 1.0, 0.0, 1.0)";
 
-class ProgramStore : public ::testing::TestWithParam<std::string> {
+class ProgramStore : public test::SessionTest {
  protected:
   void SetUp() override {
-    std::string error;
-    session_ = test::open_session(GetParam(), 64, 48, error);
-    ASSERT_TRUE(session_) << error;
+    test::SessionTest::SetUp();
+    if (HasFatalFailure()) return;
     std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
     for (char& c : name) c = c == '/' ? '_' : c;  // a parameterised test's name ends in /N
     dir_ = (fs::temp_directory_path() / ("player-program-store-" + std::to_string(getpid()) + "-" + name)).string();
@@ -83,7 +82,20 @@ class ProgramStore : public ::testing::TestWithParam<std::string> {
 
   std::string file_of(gl::ProgramCache& cache, const char* colour) { return cache.store()->path_for(fill_program(colour)); }
 
-  std::unique_ptr<gl::Session> session_;
+  // A start that finds the program's file wrong: refuses it, compiles, and draws the right colour.
+  std::unique_ptr<gl::ProgramCache> expect_refused_and_compiled(const char* colour, const std::array<uint8_t, 4>& bytes) {
+    auto cache = start();
+    const gl::Program* program = get(*cache, colour);
+    EXPECT_TRUE(program);
+    EXPECT_EQ(cache->store()->rejected(), 1u);
+    EXPECT_EQ(cache->store()->loaded(), 0u);
+    EXPECT_EQ(cache->compiled(), 1u);
+    if (program) {
+      EXPECT_EQ(draw(*program), bytes);
+    }
+    return cache;
+  }
+
   std::string dir_;
 };
 
@@ -156,13 +168,7 @@ TEST_P(ProgramStore, ADamagedOrRefusedFileIsCompiledAnewAndReplaced) {
     damage(bytes);
     std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 
-    const auto next = start();
-    const gl::Program* program = get(*next, kRed);
-    ASSERT_TRUE(program);
-    EXPECT_EQ(next->store()->rejected(), 1u);
-    EXPECT_EQ(next->store()->loaded(), 0u);
-    EXPECT_EQ(next->compiled(), 1u);
-    EXPECT_EQ(draw(*program), kRedBytes);
+    expect_refused_and_compiled(kRed, kRedBytes);
 
     const auto after = start();
     EXPECT_EQ(draw(*get(*after, kRed)), kRedBytes);
@@ -208,13 +214,7 @@ TEST_P(ProgramStore, AValidFileUnderAnotherProgramsNameIsNeverLoaded) {
   get(*first, kRed);
   const std::string red = file_of(*first, kRed), green = file_of(*first, kGreen);
   fs::copy_file(red, green);
-  const auto next = start();
-  const gl::Program* program = get(*next, kGreen);
-  ASSERT_TRUE(program);
-  EXPECT_EQ(next->store()->loaded(), 0u);
-  EXPECT_EQ(next->store()->rejected(), 1u);
-  EXPECT_EQ(next->compiled(), 1u);
-  EXPECT_EQ(draw(*program), kGreenBytes);
+  const auto next = expect_refused_and_compiled(kGreen, kGreenBytes);
   // Sources that differ only in their last bytes, or only in a stage's type, are other programs too.
   std::vector<gl::StageSource> tail = fill_program(kGreen), type = fill_program(kGreen);
   tail[1].text += "//x";

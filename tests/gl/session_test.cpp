@@ -9,12 +9,12 @@
 
 namespace {
 
-class Session : public ::testing::TestWithParam<std::string> {
+class Session : public test::SessionTest {
  protected:
   void SetUp() override {
+    test::SessionTest::SetUp();
+    if (HasFatalFailure()) return;
     std::string error;
-    session_ = test::open_session(GetParam(), 64, 48, error);
-    ASSERT_TRUE(session_) << error;
     std::ostringstream log;
     ASSERT_TRUE(scene::load("builtin:demo", scene_, error, log)) << error;
   }
@@ -29,7 +29,6 @@ class Session : public ::testing::TestWithParam<std::string> {
     return s;
   }
 
-  std::unique_ptr<gl::Session> session_;
   scene::Scene scene_;
 };
 

@@ -299,15 +299,14 @@ bool read_keys(Parser& p, const toml::table& cam, const std::string& prefix, dou
     const toml::table& kt = *a->get(i)->as_table();
     const std::string kp = field + "[" + std::to_string(i) + "].";
     if (!p.known_keys(kt, kp, {"t", "azimuth", "elevation", "distance"})) return false;
-    OrbitKey k{0, c.azimuth_deg, c.elevation_deg, c.distance};
+    OrbitKey k{.azimuth_deg = c.azimuth_deg, .elevation_deg = c.elevation_deg, .distance = c.distance};
     const toml::node* t = kt.get("t");
     if (!t) return p.fail(kt.source(), kp + "t", "a time in seconds", "nothing");
-    const double prev = i ? c.keys.back().t : 0;
     if (i == 0) {
       if (!p.number(
               *t, kp + "t", "0 (the first key is the item's start)", [](double v) { return v == 0; }, k.t))
         return false;
-    } else if (!p.number(
+    } else if (const double prev = c.keys.back().t; !p.number(
                    *t, kp + "t", "a time after the previous key's " + format_number(prev), [&](double v) { return v > prev; },
                    k.t)) {
       return false;

@@ -302,9 +302,10 @@ void Timeline::detach() {
   item_start_ = play_time_ - (active_ ? wall_item_time_ : 0.0);
 }
 
-int Timeline::current_item() {
-  if (mode_ == Mode::wallclock) return wall_valid_ ? wall_item_ : -1;
-  return active_ ? item_at(slot_) : -1;
+std::optional<int> Timeline::current_item() {
+  const bool showing = mode_ == Mode::wallclock ? wall_valid_ && wall_item_ >= 0 : active_;
+  if (!showing) return std::nullopt;
+  return mode_ == Mode::wallclock ? wall_item_ : item_at(slot_);
 }
 
 double Timeline::current_item_time() const {
@@ -436,9 +437,9 @@ void Timeline::replace(Playlist playlist, double now) {
     run_wallclock(last_wall_ + (last_now_ - last_wall_mono_));
   else
     run_sequential();
-  const int old_item = current_item();
+  const std::optional<int> old_item = current_item();
   const double old_time = current_item_time();
-  const std::string old_scene = old_item >= 0 ? playlist_.items[static_cast<std::size_t>(old_item)].scene : "";
+  const std::string old_scene = old_item ? playlist_.items[static_cast<std::size_t>(*old_item)].scene : "";
   const auto old_n = static_cast<std::int64_t>(playlist_.items.size());
   const std::int64_t old_pass = mode_ != Mode::wallclock && old_n > 0 ? floor_div(slot_, old_n) : 0;
 
@@ -452,8 +453,8 @@ void Timeline::replace(Playlist playlist, double now) {
   if (n == 0 || mode_ == Mode::wallclock) return;  // the schedule decides at the next at()
 
   int keep = -1;
-  if (old_item >= 0) {
-    if (old_item < n && items[static_cast<std::size_t>(old_item)].scene == old_scene) keep = old_item;
+  if (old_item) {
+    if (*old_item < n && items[static_cast<std::size_t>(*old_item)].scene == old_scene) keep = *old_item;
     for (std::int64_t i = 0; keep < 0 && i < n; ++i)
       if (items[static_cast<std::size_t>(i)].scene == old_scene) keep = static_cast<int>(i);
   }

@@ -25,7 +25,7 @@ std::string_view name(Schedule s);
 // wrapped between keys (0 -> 720 is two turns). Keys missing azimuth/elevation/distance take the
 // camera table's values.
 struct OrbitKey {
-  double t = 0, azimuth_deg = 0, elevation_deg = 0, distance = 1;
+  double t{}, azimuth_deg{}, elevation_deg{}, distance{};  // the parser gives every field
 };
 
 struct CameraPath {
@@ -52,8 +52,8 @@ struct Item {
   CameraPath camera;
   std::vector<Setting> settings;  // in the order they are written
   bool has_background = false;
-  glm::vec3 background{0};
-  std::string display;  // light-field display description, resolved like `scene`; empty if none
+  glm::vec3 background{};  // read only where has_background
+  std::string display;     // light-field display description, resolved like `scene`; empty if none
   // What lights the scene: an equirectangular HDR/EXR resolved like `scene`, or builtin:studio;
   // empty: the player's default (--environment, else the built-in studio).
   std::string environment;

@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "playback/playlist.h"
@@ -47,11 +48,11 @@ struct Cue {
   int item = -1;         // index into playlist().items; -1: nothing playable
   double item_time = 0;  // seconds since this item started (frozen while paused)
   Camera camera;
-  float fade = 1;              // brightness multiplier in [0, 1]
-  int next_item = -1;          // the item that follows (may equal `item`), to prepare in advance; -1 if none
-  bool finished = false;       // loop = false and the last item is over
-  bool cut = false;            // the item or camera jumped since the previous at() (true on the first call)
-  std::uint64_t sequence = 0;  // + 1 at every item start (the first is 1); a kept item in replace() keeps it
+  float fade = 1;            // brightness multiplier in [0, 1]
+  int next_item = -1;        // the item that follows (may equal `item`), to prepare in advance; -1 if none
+  bool finished = false;     // loop = false and the last item is over
+  bool cut = false;          // the item or camera jumped since the previous at() (true on the first call)
+  std::uint64_t sequence{};  // + 1 at every item start (the first is 1); a kept item in replace() keeps it
 };
 
 // Where `path` puts the camera `t` seconds into an item (the Cue's camera).
@@ -110,7 +111,7 @@ class Timeline {
   void detach();
   float fade(double t, double duration, bool has_next) const;
   double current_item_time() const;
-  int current_item();
+  std::optional<int> current_item();
 
   Playlist playlist_;
   std::vector<char> playable_;

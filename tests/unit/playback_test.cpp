@@ -132,6 +132,18 @@ TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
   EXPECT_EQ(pl.items.at(0).background, glm::vec3(0.0f, 0.5f, 1.0f));
 }
 
+// The camera's ranges are taken to their ends: elevation [-89, 89] closed, fov (1, 170) open.
+TEST(Playlist, CameraValuesAtTheEndsOfTheirRangesAreTaken) {
+  const Playlist pl = parse_ok(
+      "[[item]]\nscene = \"a.glb\"\ncamera = { motion = \"still\", elevation = -89, fov = 169.9 }\n"
+      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"still\", elevation = 89, fov = 1.1 }\n");
+  ASSERT_EQ(pl.items.size(), 2u);
+  EXPECT_EQ(pl.items[0].camera.elevation_deg, -89.0);
+  EXPECT_EQ(pl.items[0].camera.fov_deg, 169.9);
+  EXPECT_EQ(pl.items[1].camera.elevation_deg, 89.0);
+  EXPECT_EQ(pl.items[1].camera.fov_deg, 1.1);
+}
+
 TEST(Playlist, SeedZeroIsASeedLikeAnyOther) {
   Playlist pl;
   std::string error;
@@ -298,6 +310,11 @@ const ErrorCase error_cases[] = {
     {"DurationZero", ITEM "duration = 0\n", "3:12: item[0].duration: expected a number of seconds > 0, got 0"},
     {"DurationString", ITEM "duration = \"8\"\n", "3:12: item[0].duration: expected a number of seconds > 0, got a string"},
     {"DurationInfinite", ITEM "duration = inf\n", "3:12: item[0].duration: expected a number of seconds > 0, got inf"},
+    // TOML's own date and time values are named as such.
+    {"DurationTime", ITEM "duration = 07:32:00\n", "3:12: item[0].duration: expected a number of seconds > 0, got a time"},
+    {"DurationDate", ITEM "duration = 1979-05-27\n", "3:12: item[0].duration: expected a number of seconds > 0, got a date"},
+    {"DurationDateTime", ITEM "duration = 1979-05-27T07:32:00Z\n",
+     "3:12: item[0].duration: expected a number of seconds > 0, got a date-time"},
     {"SecondItemNamed", ITEM "[[item]]\nscene = \"b.glb\"\nduration = -2\n",
      "5:12: item[1].duration: expected a number of seconds > 0, got -2"},
     // Paths.

@@ -250,6 +250,30 @@ TEST(Timeline, NothingPlayable) {
   EXPECT_TRUE(f.cut);
 }
 
+// A button pressed when the playing item has changed since the last frame counts from the item
+// playing at the press, not from the one the last frame showed.
+TEST(Timeline, NextCountsFromTheItemPlayingAtThePressEvenWithNoFrameSinceItChanged) {
+  Timeline tl(make({1, 1, 10, 10}), t0, wall0);
+  EXPECT_EQ(at(tl, 0.5).item, 0);
+  tl.next(t0 + 1.5);  // item 1 has played for 0.5 s, unseen
+  check(tl, {{1.5, 2, 0}, {2, 2, 0.5}});
+}
+
+TEST(Timeline, WallclockWithNothingPlayableShowsNothingThenKeepsTheSchedule) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  for (int i = 0; i < 3; ++i) tl.set_playable(i, false);
+  Cue f = at(tl, 5);
+  EXPECT_EQ(f.item, -1);
+  EXPECT_EQ(f.next_item, -1);
+  tl.set_playable(2, true);
+  f = at(tl, 6);  // slot 1 shows the next playable item, 2 s into the slot
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 2, 1e-9);
+  EXPECT_TRUE(f.cut);
+}
+
 TEST(Timeline, AStallOfTenHoursLandsOnTheRightItem) {
   // Cycle 20 s: 36000 s is 1800 cycles, 13 s more is item 2 at 3 s.
   Timeline tl(make({4, 6, 10}), t0, wall0);
@@ -448,6 +472,26 @@ TEST(Timeline, WallclockStepIsACut) {
   EXPECT_FALSE(tl.at(t0 + 4, wall0 + 14).cut);
 }
 
+// Frames a tenth of a second apart over two cycles: a cut and a new sequence number where the item
+// changes and nowhere else (the cycle count must not move inside a cycle).
+TEST(Timeline, WallclockCutsOnlyWhereTheItemChanges) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  int previous_item = -1;
+  std::uint64_t previous_sequence = 0;
+  for (int step = 0; step < 400; ++step) {
+    const double t = 0.05 + 0.1 * step;
+    SCOPED_TRACE(t);
+    const Cue f = at(tl, t);
+    const bool changed = f.item != previous_item;
+    EXPECT_EQ(f.cut, changed);
+    EXPECT_EQ(f.sequence, previous_sequence + (changed ? 1 : 0));
+    previous_item = f.item;
+    previous_sequence = f.sequence;
+  }
+}
+
 TEST(Timeline, CutExactlyAtChanges) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
   struct Step {
@@ -640,6 +684,21 @@ TEST(CameraPath, TurntableStillAndFov) {
   still.motion = Motion::still;
   still.azimuth_deg = -45;
   for (double t : {0.0, 7.0, 1e6}) EXPECT_NEAR(camera_at(still, t).azimuth_deg, 315, 1e-9);
+}
+
+// The azimuth is wrapped into [0, 360): angles within a degree of north are kept as they are.
+TEST(CameraPath, AzimuthJustPastNorthIsKept) {
+  CameraPath still;
+  still.motion = Motion::still;
+  for (double az : {0.5, -359.5, 360.5}) {
+    SCOPED_TRACE(az);
+    still.azimuth_deg = az;
+    EXPECT_NEAR(camera_at(still, 1).azimuth_deg, 0.5, 1e-9);
+  }
+  CameraPath turn;
+  turn.azimuth_deg = 0;
+  turn.period_s = 36;
+  EXPECT_NEAR(camera_at(turn, 0.05).azimuth_deg, 0.5, 1e-9);  // a tenth of a degree per 0.01 s
 }
 
 TEST(CameraPath, OrbitThroughKeysThenHolds) {

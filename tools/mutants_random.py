@@ -3,13 +3,13 @@
 
 Generates mutants at random sites of one folder's C++ sources with a fixed set of operators, builds
 each in the scratch tree tools/mutants uses, runs the folder's test family and reports killed,
-survived, did not build and timed out. The same seed gives the same mutants for the same sources.
+survived, did not build and timed out. The same seed gives the same mutants for the same sources, and
+an edit changes the choice only at the sites it touches (choose()).
 A survivor is either killed by a new test or named in FOLDER/mutants.equivalent with the reason.
 """
 import argparse
 import hashlib
 import os
-import random
 import re
 import shutil
 import signal
@@ -280,6 +280,18 @@ def reach(build, src, selector):
     return tests
 
 
+def choose(candidates, count, seed):
+    """The `count` candidates whose ids hash lowest under `seed` (bottom-k sampling), in that order.
+    The same seed and sources give the same mutants; and since a mutant's id comes from its own line,
+    an edit changes the choice only where it adds or removes sites: dead code removed to settle an
+    equivalent mutant brings one new mutant in, not a new sample of the whole folder."""
+    def rank(entry):
+        index, (path, _, op, original, new) = entry
+        return hashlib.sha1(f"{seed}\0{mutant_id(path, original, new, op)}".encode()).digest(), index
+
+    return [m for _, m in sorted(enumerate(candidates), key=rank)[:count]]
+
+
 def main():
     parser = argparse.ArgumentParser(prog="tools/mutants --random")
     parser.add_argument("--random", type=int, required=True, metavar="N")
@@ -300,7 +312,7 @@ def main():
     candidates = collect(folder)
     if not candidates:
         sys.exit(f"mutants: no mutable site in {folder}")
-    chosen = random.Random(args.seed).sample(candidates, min(args.random, len(candidates)))
+    chosen = choose(candidates, args.random, args.seed)
     if args.only:
         chosen = [m for m in chosen if re.search(args.only, mutant_id(m[0], m[3], m[4], m[2]))]
     equivalents, equivalents_path = load_equivalents(folder)

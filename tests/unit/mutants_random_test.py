@@ -69,6 +69,19 @@ class Selection(unittest.TestCase):
         self.assertNotEqual(first, self.listing(8))
         self.assertEqual(first.count("\n  + "), 20)
 
+    def test_an_edit_changes_the_choice_only_where_it_adds_or_removes_sites(self):
+        candidates = [(f"f{i % 7}.cpp", i, "constant", f"int v{i} = 0;", f"int v{i} = 1;") for i in range(200)]
+        chosen = mutants_random.choose(candidates, 20, 3)
+        self.assertEqual(len(chosen), 20)
+        self.assertEqual(chosen, mutants_random.choose(list(reversed(candidates)), 20, 3))
+        self.assertNotEqual(set(chosen), set(mutants_random.choose(candidates, 20, 4)))
+        # A chosen site removed: the other 19 stay and one comes in; a site not chosen removed: no change.
+        without_chosen = [c for c in candidates if c != chosen[5]]
+        again = mutants_random.choose(without_chosen, 20, 3)
+        self.assertEqual(len(set(again) & set(chosen)), 19)
+        not_chosen = next(c for c in candidates if c not in chosen)
+        self.assertEqual(mutants_random.choose([c for c in candidates if c != not_chosen], 20, 3), chosen)
+
     def test_a_test_name_becomes_an_exact_ctest_pattern(self):
         self.assertEqual(mutants_random.ctest_pattern(["gl.Platforms/A.b", "x(y)"]), r"^(gl\.Platforms/A\.b|x\(y\))$")
 

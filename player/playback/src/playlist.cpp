@@ -153,7 +153,7 @@ class Parser {
   template <class Ok>
   bool number(const toml::node& n, const std::string& field, const std::string& what, Ok ok, double& out,
               const std::string& negative = {}) {
-    double v = 0;
+    double v{};
     if (auto i = n.as_integer())
       v = static_cast<double>(i->get());
     else if (auto f = n.as_floating_point())
@@ -272,7 +272,7 @@ bool read_background(Parser& p, const toml::node& n, const std::string& field, g
   if (!a) return p.fail(n.source(), field, what, type_of(n));
   if (a->size() != 3) return p.fail(n.source(), field, what, describe(n));
   for (std::size_t i = 0; i < 3; ++i) {
-    double v = 0;
+    double v{};
     if (!p.number(
             *a->get(i), field + "[" + std::to_string(i) + "]", "a number in [0, 1]", [](double x) { return x >= 0 && x <= 1; },
             v))

@@ -31,10 +31,10 @@ std::uint64_t below(std::mt19937_64& engine, std::uint64_t bound) {
   }
 }
 
+// b > 0: every divisor here is a playlist's length.
 std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  std::int64_t q = a / b;
-  if (a % b != 0 && ((a < 0) != (b < 0))) --q;
-  return q;
+  const std::int64_t q = a / b;
+  return a - q * b < 0 ? q - 1 : q;
 }
 
 double wrap360(double a) {
@@ -268,8 +268,8 @@ void Timeline::run_wallclock(double wall) {
   if (pos < 0) pos += cycle;
   if (!(pos < cycle)) pos = 0;  // NaN, or rounding up to the cycle
   const double count = std::floor((wall - pos) / cycle + 0.5);
-  int i = static_cast<int>(std::upper_bound(slot_end_.begin(), slot_end_.end(), pos) - slot_end_.begin());
-  i = std::min(i, n - 1);
+  // pos < cycle, the last slot's end, so some slot ends after it.
+  const int i = static_cast<int>(std::upper_bound(slot_end_.begin(), slot_end_.end(), pos) - slot_end_.begin());
   const double t = std::max(0.0, pos - (i ? slot_end_[static_cast<std::size_t>(i - 1)] : 0.0));
   const int shown = wall_slot_item(i);
   const bool changed = !wall_valid_ || count != wall_cycle_ || i != wall_slot_ || shown != wall_item_;
@@ -452,21 +452,21 @@ void Timeline::replace(Playlist playlist, double now) {
   const auto n = static_cast<std::int64_t>(items.size());
   if (n == 0 || mode_ == Mode::wallclock) return;  // the schedule decides at the next at()
 
-  int keep = -1;
+  std::optional<int> keep;
   if (old_item) {
-    if (*old_item < n && items[static_cast<std::size_t>(*old_item)].scene == old_scene) keep = *old_item;
-    for (std::int64_t i = 0; keep < 0 && i < n; ++i)
+    if (*old_item < n && items[static_cast<std::size_t>(*old_item)].scene == old_scene) keep = old_item;
+    for (std::int64_t i = 0; !keep && i < n; ++i)
       if (items[static_cast<std::size_t>(i)].scene == old_scene) keep = static_cast<int>(i);
   }
-  if (keep < 0) {
+  if (!keep) {
     run_sequential();  // starts the first item
     return;
   }
   const std::int64_t pass = looping() ? old_pass : 0;
-  std::int64_t pos = keep;
+  std::int64_t pos = *keep;
   if (shuffled()) {
     const auto& o = order(pass);
-    pos = std::find(o.begin(), o.end(), keep) - o.begin();
+    pos = std::find(o.begin(), o.end(), *keep) - o.begin();
   }
   slot_ = pass * n + pos;
   item_start_ = play_time_ - old_time;

@@ -61,7 +61,7 @@ struct Item {
   // pose), a name, or an index as text; checked against the scene when it has loaded.
   std::string animation = "all";
   double animation_speed = 1.0;  // animation seconds per item second
-  int line = 0;                  // where the item's table starts, for messages
+  int line{};                    // where the item's table starts in the file, for messages
 };
 
 struct Playlist {

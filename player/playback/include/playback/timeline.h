@@ -38,8 +38,8 @@
 
 namespace playback {
 
-struct Camera {  // what scene::Framing takes
-  double azimuth_deg = 30, elevation_deg = 20, distance = 1, fov_deg = 45;
+struct Camera {                                                  // what scene::Framing takes
+  double azimuth_deg{}, elevation_deg{}, distance{}, fov_deg{};  // camera_at() gives each, wherever an item shows
   int file_index = -1;  // >= 0: the scene's own camera of that index instead (motion = "file")
 };
 
@@ -115,16 +115,18 @@ class Timeline {
 
   Playlist playlist_;
   std::vector<char> playable_;
-  int playable_count_ = 0;
+  // Members initialised with {} are set before they are read: by the constructor, reset_playlist(), or
+  // (the wallclock ones) by run_wallclock() before wall_valid_ lets anything read them.
+  int playable_count_{};
   // The sum of playable durations (sequential fast-forward), from the two kept item by item.
   double playable_cycle() const;
-  double finite_cycle_ = 0;       // the playable items' finite durations, summed
-  int infinite_playable_ = 0;     // playable items of infinite duration (the cycle is then infinite)
+  double finite_cycle_{};         // the playable items' finite durations, summed
+  int infinite_playable_{};       // playable items of infinite duration (the cycle is then infinite)
   std::vector<double> slot_end_;  // wallclock: end of each item's slot in the cycle
   Mode mode_ = Mode::sequential;
 
-  double last_now_ = 0, play_time_ = 0;
-  double last_wall_ = 0, last_wall_mono_ = 0;
+  double last_now_{}, play_time_ = 0;
+  double last_wall_{}, last_wall_mono_{};
   bool paused_ = false;
 
   // Sequential and local: the current slot (pass * items + position) and when it started.
@@ -134,8 +136,8 @@ class Timeline {
 
   // Wallclock: the slot shown at the last evaluation.
   bool wall_valid_ = false;
-  double wall_cycle_ = 0, wall_mono_ = 0;
-  int wall_slot_ = -1, wall_item_ = -1, wall_next_ = -1;
+  double wall_cycle_{}, wall_mono_{};
+  int wall_slot_{}, wall_item_ = -1, wall_next_{};
   double wall_item_time_ = 0;
 
   std::uint64_t sequence_ = 0;

@@ -156,8 +156,12 @@ def sites(path, lines):
                 found.append((index, "constant", replace_span(m.start(1), m.end(1), r)))
         for m in TWO_ARGUMENTS.finditer(code):
             # Keywords are not calls, and swapping the arguments of a symmetric function changes nothing.
+            # A macro's arguments (all capitals: an X-macro's type and name) have no type to share, and
+            # swapped they only fail to build, each such mutant rebuilding every file that includes it.
             if m.group(2) == m.group(3) or m.group(1) in ("if", "while", "for", "switch", "return", "sizeof", "min", "max",
                                                          "hypot", "swap", "distance", "dot", "equal"):
+                continue
+            if re.fullmatch(r"[A-Z][A-Z0-9_]*", m.group(1)):
                 continue
             found.append((index, "swap", replace_span(m.start(2), m.end(3), m.group(3) + ", " + m.group(2))))
         if CALL_STATEMENT.match(code) and not stripped.startswith(("return", "else", "case", "delete")):

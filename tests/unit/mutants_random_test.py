@@ -56,6 +56,11 @@ class Operators(unittest.TestCase):
         found = mutants(["Loop::Loop(int a) {", "  x = std::max(a, b);", "}"])
         self.assertFalse([m for m in found if m[1] in ("swap", "early-return")], found)
 
+    def test_a_macros_arguments_are_not_swapped(self):
+        found = mutants(["  X(PFNGLREADPIXELSPROC, ReadPixels) X(PFNGLPIXELSTOREIPROC, PixelStorei)  \\"])
+        self.assertFalse([m for m in found if m[1] == "swap"], found)
+        self.assertTrue([m for m in mutants(["  x = f(a, b);"]) if m[1] == "swap"])
+
 
 class Selection(unittest.TestCase):
     def listing(self, seed):

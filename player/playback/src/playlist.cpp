@@ -418,10 +418,10 @@ bool read_item(Parser& p, const Paths& paths, const ParseOptions& options, const
   }
   if (const toml::node* a = t.get("animation")) {
     // Which animation is checked against the scene once it is loaded; here only its form.
-    if (const auto index = a->as_integer()) {
-      if (index->get() < 0)
+    if (const auto number = a->as_integer()) {
+      if (number->get() < 0)
         return p.fail(a->source(), prefix + "animation", "\"all\", \"none\", a name or an index >= 0", describe(*a));
-      item.animation = std::to_string(index->get());
+      item.animation = std::to_string(number->get());
     } else if (const auto name = a->as_string()) {
       if (name->get().empty())
         return p.fail(a->source(), prefix + "animation", "\"all\", \"none\", a name or an index >= 0", "\"\"");

@@ -1,5 +1,7 @@
 #include "shader_cache.h"
 
+#include "scene/environment.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
@@ -44,6 +46,7 @@ std::string prepare_driver_cache(const std::string& dir) {
 }
 
 std::string open_program_store(gl::Session& session, const std::string& dir) {
+  scene::keep_prepared_environments(dir.empty() ? fs::path() : fs::path(dir) / "environments");
   if (dir.empty()) return "shader cache: off";
   std::string reason;
   std::unique_ptr<gl::ProgramStore> store = gl::ProgramStore::open((fs::path(dir) / "programs").string(), session.caps(), reason);
@@ -59,6 +62,17 @@ std::string program_counts(const gl::ProgramCache& programs) {
     if (store->rejected() > 0) text += ", " + std::to_string(store->rejected()) + " damaged or stale file(s) compiled anew";
   }
   if (!programs.store_problem().empty()) text += "; not kept: " + programs.store_problem();
+  return text;
+}
+
+std::string environment_counts() {
+  const scene::EnvironmentCacheCounts counts = scene::environment_cache_counts();
+  std::string text = std::to_string(counts.prepared) + " prepared";
+  if (!counts.dir.empty()) {
+    text += ", " + std::to_string(counts.loaded) + " loaded from " + counts.dir.string();
+    if (counts.rejected > 0) text += ", " + std::to_string(counts.rejected) + " damaged file(s) prepared anew";
+  }
+  if (!counts.problem.empty()) text += "; not kept: " + counts.problem;
   return text;
 }
 

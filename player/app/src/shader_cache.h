@@ -18,11 +18,14 @@ std::string shader_cache_dir(const std::string& option);
 // could not be made (Mesa then keeps its default).
 std::string prepare_driver_cache(const std::string& dir);
 
-// After the context exists: its programs are looked for in, and kept in, DIR/programs. Returns a
-// line for the log that says where, or why not.
+// After the context exists: its programs are looked for in, and kept in, DIR/programs, and prepared
+// lighting environments in DIR/environments (none kept when `dir` is empty). Returns a line for the
+// log that says where, or why not.
 std::string open_program_store(gl::Session& session, const std::string& dir);
 
 // "N compiled, M loaded from DIR" (and the rejected files and a failure to save, if any).
 std::string program_counts(const gl::ProgramCache& programs);
+// "N prepared, M loaded from DIR/environments": the lighting environments of this process so far.
+std::string environment_counts();
 
 }  // namespace app

@@ -2,6 +2,7 @@
 
 #include "base/image_codec.h"
 #include "base/read_file.h"
+#include "environment_cache.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -294,6 +296,10 @@ float studio_radiance(glm::vec3 d) {
   return radiance;
 }
 
+// prepare_environment()'s work when no kept copy is found: defined below it, beside it in the file.
+Environment prefilter_environment(std::string name, int width, int height, const std::vector<float>& rgb, int face_size,
+                                  int levels);
+
 }  // namespace
 
 std::array<float, 9> sh_basis(glm::vec3 n) {
@@ -390,6 +396,19 @@ Environment prepare_environment(std::string name, int width, int height, const s
     throw std::invalid_argument("prepare_environment: expected width x height x 3 floats");
   if (face_size <= 0 || (face_size & (face_size - 1)) != 0 || levels < 1 || levels > 31 || (face_size >> (levels - 1)) < 1)
     throw std::invalid_argument("prepare_environment: expected a power-of-two face size with at least 1 texel at the last level");
+  if (std::optional<Environment> kept = detail::kept_environment(width, height, rgb, face_size, levels)) {
+    kept->name = std::move(name);
+    return std::move(*kept);
+  }
+  Environment env = prefilter_environment(std::move(name), width, height, rgb, face_size, levels);
+  detail::keep_environment(width, height, rgb, env);
+  return env;
+}
+
+namespace {
+
+Environment prefilter_environment(std::string name, int width, int height, const std::vector<float>& rgb, int face_size,
+                                  int levels) {
   const Equirect image{width, height, rgb.data()};
   Environment env;
   env.name = std::move(name);
@@ -407,6 +426,8 @@ Environment prepare_environment(std::string name, int width, int height, const s
   }
   return env;
 }
+
+}  // namespace
 
 Environment uniform_environment(glm::vec3 radiance, int face_size) {
   const int width = 16, height = 8;

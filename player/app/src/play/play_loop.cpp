@@ -316,7 +316,9 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
   // What a restart costs the people in front of the screen: the first frame may be the loading screen.
   if (drew_scene_ && !scene_shown_) {
     scene_shown_ = true;
-    p_.out << "first scene frame presented " << ms_since_process_start() << " ms after the process started\n" << std::flush;
+    p_.out << "first scene frame presented " << ms_since_process_start()
+           << " ms after the process started; environments: " << environment_counts() << "\n"
+           << std::flush;
   }
   if (display_found_s_ >= 0.0 && p_.platform.presenting()) {
     p_.out << "display: showing frames again " << (p_.clock.now() - display_found_s_) * 1000.0 << " ms after it came\n"

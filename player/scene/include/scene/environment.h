@@ -37,6 +37,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -92,8 +93,27 @@ bool load_environment(const std::filesystem::path& file, Environment& out, std::
 // at the top, linear, finite and non-negative. face_size is a power of two; levels is at least 1
 // and at most log2(face_size) + 1. Throws std::invalid_argument when they are not (a caller's bug:
 // load_environment checks what a file can get wrong). Used by load_environment, the studio and tests.
+// Once keep_prepared_environments() has named a folder, what it prepares is kept there and read back
+// instead of prepared again, by the same build of the player for the same pixels and sizes.
 Environment prepare_environment(std::string name, int width, int height, const std::vector<float>& rgb, int face_size = 128,
                                 int levels = 6);
+
+// Prepared environments kept between runs: the prefiltering takes seconds on a board (65 s under
+// ASan in the test VM), which every start paid before its first scene frame. Call once at start,
+// before anything is prepared (the player does, in its shader cache folder); empty keeps none. Each
+// file names the build that wrote it (its GNU build id: a build without one keeps nothing), so an
+// upgrade never reads an older build's result; a damaged or truncated file is removed and the
+// environment prepared again. Naming the folder prunes it, least recently used first.
+inline constexpr std::size_t kMaxKeptEnvironments = 32;  // one is 1.6 MB at face 128
+inline constexpr std::uintmax_t kMaxKeptEnvironmentBytes = std::uintmax_t(64) << 20;
+void keep_prepared_environments(const std::filesystem::path& dir);
+
+struct EnvironmentCacheCounts {
+  std::size_t prepared = 0, loaded = 0, rejected = 0;  // rejected: damaged files, prepared again
+  std::filesystem::path dir;                           // empty: none kept
+  std::string problem;                                 // the last failure to keep one, if any
+};
+EnvironmentCacheCounts environment_cache_counts();
 
 // The split-sum BRDF table (Karis 2013): size x size entries (A, B), F0 * A + B being the directional
 // albedo of GGX with height-correlated Smith visibility and Schlick's Fresnel, for

@@ -4,10 +4,14 @@
 
 #include "gl/program_store.h"
 
+#include "base/cache_file.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -142,15 +146,26 @@ TEST_P(ProgramStore, AChangedSourceIsCompiledNeverLoaded) {
   EXPECT_EQ(after->store()->loaded(), 2u);
 }
 
-// Each way a file can be wrong: its binary damaged (one byte), cut short, its header's format not
-// the driver's (the driver refuses it), or not a program file at all. Each is compiled anew and
-// replaced, so the start after loads again.
+// Each way a file can be wrong: its binary damaged (one byte), cut short, its key check changed, a
+// binary format the driver does not know in a file sealed again around it (so only the driver
+// refuses it), or not a program file at all. Each is compiled anew and replaced, so the start after
+// loads again.
 TEST_P(ProgramStore, ADamagedOrRefusedFileIsCompiledAnewAndReplaced) {
   using Damage = void (*)(std::string&);
   const std::vector<std::pair<const char*, Damage>> damages = {
       {"one byte of the binary", [](std::string& bytes) { bytes[bytes.size() / 2 + 16] ^= 0x20; }},
       {"cut short", [](std::string& bytes) { bytes.resize(bytes.size() / 2); }},
-      {"the format", [](std::string& bytes) { bytes[8] ^= 0x01; }},
+      {"the key check", [](std::string& bytes) { bytes[8] ^= 0x01; }},
+      {"a format the driver refuses",
+       [](std::string& bytes) {
+         // The seal's header: magic (8 bytes), key check (8), length (8), checksum (8); the payload
+         // starts with the format.
+         std::string payload = bytes.substr(32);
+         payload[0] ^= 0x40;
+         std::uint64_t key_check = 0;
+         std::memcpy(&key_check, bytes.data() + 8, sizeof key_check);
+         bytes = base::seal_cache_payload(bytes.substr(0, 8), key_check, payload);
+       }},
       {"not a program file", [](std::string& bytes) { bytes = "not a program binary\n"; }},
   };
   for (const auto& [what, damage] : damages) {

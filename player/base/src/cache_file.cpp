@@ -22,6 +22,13 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+struct SealHeader {
+  char magic[8];
+  std::uint64_t key_check;
+  std::uint64_t length;  // bytes of payload after the header
+  std::uint64_t checksum;
+};
+
 // The first object dl_iterate_phdr reports is the executable itself.
 int find_build_id(dl_phdr_info* info, std::size_t, void* data) {
   auto& id = *static_cast<std::string*>(data);
@@ -35,7 +42,8 @@ int find_build_id(dl_phdr_info* info, std::size_t, void* data) {
       std::memcpy(&note, p, sizeof note);
       const unsigned char* name = p + sizeof note;
       const unsigned char* desc = name + ((note.n_namesz + 3) & ~3u);
-      if (note.n_type == NT_GNU_BUILD_ID && note.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0 && desc + note.n_descsz <= end) {
+      if (note.n_type == NT_GNU_BUILD_ID && note.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0 &&
+          desc + note.n_descsz <= end) {
         static const char hex[] = "0123456789abcdef";
         for (unsigned k = 0; k < note.n_descsz; ++k) {
           id += hex[desc[k] >> 4];
@@ -68,6 +76,30 @@ std::uint64_t word_hash(std::uint64_t hash, std::string_view bytes) {
   std::uint64_t tail = bytes.size() - i;
   for (; i < bytes.size(); ++i) tail = (tail << 8) | static_cast<unsigned char>(bytes[i]);
   return mix(hash ^ tail ^ (bytes.size() << 1));
+}
+
+std::string seal_cache_payload(std::string_view magic, std::uint64_t key_check, std::string_view payload) {
+  SealHeader header{};
+  std::memcpy(header.magic, magic.data(), std::min(magic.size(), sizeof header.magic));
+  header.key_check = key_check;
+  header.length = payload.size();
+  header.checksum = fnv1a(kFnvOffset, payload.data(), payload.size());
+  std::string bytes(sizeof header, '\0');
+  std::memcpy(bytes.data(), &header, sizeof header);
+  bytes.append(payload);
+  return bytes;
+}
+
+std::optional<std::string_view> unseal_cache_payload(std::string_view file, std::string_view magic, std::uint64_t key_check) {
+  SealHeader header{};
+  if (file.size() < sizeof header) return std::nullopt;
+  std::memcpy(&header, file.data(), sizeof header);
+  const std::string_view payload = file.substr(sizeof header);
+  if (std::string_view(header.magic, sizeof header.magic) != magic.substr(0, sizeof header.magic) ||
+      header.key_check != key_check || header.length != payload.size() ||
+      header.checksum != fnv1a(kFnvOffset, payload.data(), payload.size()))
+    return std::nullopt;
+  return payload;
 }
 
 std::string cache_file_name(std::uint64_t key, std::string_view suffix) {

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <string_view>
 #include <system_error>
 
 namespace gl {
@@ -16,17 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file: this header, then the driver's binary. The key check is a second, independent hash of the
-// texts and the driver (the first names the file), so a collision of one is not enough to load a
+// A sealed cache file (base/cache_file.h) whose payload is the driver's binary format
+// (GL_PROGRAM_BINARY_FORMAT, 4 bytes) and the binary. The key check is a second, independent hash of
+// the texts and the driver (the first names the file), so a collision of one is not enough to load a
 // program for other sources; the checksum finds a damaged or truncated binary before the driver sees it.
-constexpr char kMagic[8] = {'S', 'S', 'A', 'O', 'P', 'R', 'G', '1'};
-struct Header {
-  char magic[8];
-  std::uint32_t format;  // the driver's binary format (GL_PROGRAM_BINARY_FORMAT)
-  std::uint32_t length;  // bytes of binary after the header
-  std::uint64_t key_check;
-  std::uint64_t checksum;
-};
+constexpr std::string_view kMagic = "SSAOPRG2";
 
 template <typename Hash>
 std::uint64_t key_hash(std::uint64_t seed, const std::string& driver, const std::vector<StageSource>& sources, Hash hash) {
@@ -85,15 +81,13 @@ Program ProgramStore::load(const std::vector<StageSource>& sources) {
     fs::remove(path, ec);
     return Program();
   };
-  Header header{};
-  if (bytes.size() < sizeof header) return reject();
-  std::memcpy(&header, bytes.data(), sizeof header);
-  const char* binary = bytes.data() + sizeof header;
-  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0 || header.length != bytes.size() - sizeof header ||
-      header.key_check != check_key(driver_, sources) || header.checksum != base::fnv1a(base::kFnvOffset, binary, header.length))
-    return reject();
+  const std::optional<std::string_view> payload = base::unseal_cache_payload(bytes, kMagic, check_key(driver_, sources));
+  GLenum format = 0;
+  if (!payload || payload->size() <= sizeof format) return reject();
+  std::memcpy(&format, payload->data(), sizeof format);
+  const std::string_view binary = payload->substr(sizeof format);
   Program program(api.CreateProgram());
-  api.ProgramBinary(program.id(), header.format, binary, static_cast<GLsizei>(header.length));
+  api.ProgramBinary(program.id(), format, binary.data(), static_cast<GLsizei>(binary.size()));
   GLint ok = GL_FALSE;
   api.GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   while (api.GetError() != GL_NO_ERROR) ok = GL_FALSE;  // an unknown format is GL_INVALID_ENUM
@@ -109,24 +103,17 @@ bool ProgramStore::save(const std::vector<StageSource>& sources, const Program& 
     error = "the driver gave no binary for " + sources.front().file;
     return false;
   }
-  std::string bytes(sizeof(Header) + static_cast<std::size_t>(length), '\0');
   GLenum format = 0;
+  std::string payload(sizeof format + static_cast<std::size_t>(length), '\0');
   GLsizei written = 0;
-  api.GetProgramBinary(program.id(), length, &written, &format, bytes.data() + sizeof(Header));
+  api.GetProgramBinary(program.id(), length, &written, &format, payload.data() + sizeof format);
   if (written <= 0) {
     error = "the driver gave no binary for " + sources.front().file;
     return false;
   }
-  bytes.resize(sizeof(Header) + static_cast<std::size_t>(written));
-  Header header{};
-  std::memcpy(header.magic, kMagic, sizeof kMagic);
-  header.format = format;
-  header.length = static_cast<std::uint32_t>(written);
-  header.key_check = check_key(driver_, sources);
-  header.checksum = base::fnv1a(base::kFnvOffset, bytes.data() + sizeof(Header), header.length);
-  std::memcpy(bytes.data(), &header, sizeof header);
-
-  return base::write_file_whole(path_for(sources), bytes, error);
+  payload.resize(sizeof format + static_cast<std::size_t>(written));
+  std::memcpy(payload.data(), &format, sizeof format);
+  return base::write_file_whole(path_for(sources), base::seal_cache_payload(kMagic, check_key(driver_, sources), payload), error);
 }
 
 }  // namespace gl

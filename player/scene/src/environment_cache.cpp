@@ -7,6 +7,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 namespace scene {
@@ -14,18 +15,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file: this header, then the nine SH coefficients and every level's faces, as floats. Named by
-// one hash of the key (the build, the sizes and the image), checked by a second one; the checksum
-// finds a damaged or truncated file.
-constexpr char kMagic[8] = {'S', 'S', 'A', 'O', 'E', 'N', 'V', '1'};
-struct Header {
-  char magic[8];
-  std::uint32_t face_size;
-  std::uint32_t levels;
-  std::uint64_t key_check;
-  std::uint64_t length;  // bytes after the header
-  std::uint64_t checksum;
-};
+// A sealed cache file (base/cache_file.h) whose payload is the nine SH coefficients and every
+// level's faces, as floats. Named by one hash of the key (the build, the sizes and the image) and
+// checked by a second; the checksum finds a damaged or truncated file.
+constexpr std::string_view kMagic = "SSAOENV1";
 
 std::mutex dir_mutex;
 fs::path kept_dir;         // empty: none kept
@@ -80,36 +73,26 @@ namespace detail {
 std::optional<Environment> kept_environment(int width, int height, const std::vector<float>& rgb, int face_size, int levels) {
   const fs::path folder = dir();
   // A build without an id cannot tell its files from another build's: it keeps none.
-  if (folder.empty() || base::executable_build_id().empty()) {
-    ++prepared_count;
-    return std::nullopt;
-  }
+  if (folder.empty() || base::executable_build_id().empty()) return std::nullopt;
   const std::string key = key_text(width, height, rgb, face_size, levels);
   const fs::path path = file_for(folder, key);
   std::string bytes;
-  if (!base::read_cache_file(path, bytes)) {
-    ++prepared_count;
-    return std::nullopt;
-  }
-  const std::size_t floats = payload_floats(face_size, levels);
-  Header header{};
-  if (bytes.size() >= sizeof header) std::memcpy(&header, bytes.data(), sizeof header);
-  const char* payload = bytes.data() + sizeof header;
-  if (bytes.size() != sizeof header + floats * sizeof(float) || std::memcmp(header.magic, kMagic, sizeof kMagic) != 0 ||
-      header.face_size != std::uint32_t(face_size) || header.levels != std::uint32_t(levels) || header.key_check != check_of(key) ||
-      header.length != floats * sizeof(float) || header.checksum != base::fnv1a(base::kFnvOffset, payload, header.length)) {
+  if (!base::read_cache_file(path, bytes)) return std::nullopt;
+  const std::optional<std::string_view> sealed = base::unseal_cache_payload(bytes, kMagic, check_of(key));
+  if (!sealed || sealed->size() != payload_floats(face_size, levels) * sizeof(float)) {
     std::error_code ec;
     fs::remove(path, ec);
     ++rejected_count;
-    ++prepared_count;
     return std::nullopt;
   }
+  const char* payload = sealed->data();
   Environment env;
   env.face_size = face_size;
   std::memcpy(env.irradiance_sh.data(), payload, sizeof env.irradiance_sh);
   payload += sizeof env.irradiance_sh;
   for (int l = 0; l < levels; ++l) {
-    std::vector<float>& level = env.specular.emplace_back(std::size_t(6) * std::size_t(face_size >> l) * std::size_t(face_size >> l) * 3);
+    std::vector<float>& level =
+        env.specular.emplace_back(std::size_t(6) * std::size_t(face_size >> l) * std::size_t(face_size >> l) * 3);
     std::memcpy(level.data(), payload, level.size() * sizeof(float));
     payload += level.size() * sizeof(float);
   }
@@ -118,27 +101,19 @@ std::optional<Environment> kept_environment(int width, int height, const std::ve
 }
 
 void keep_environment(int width, int height, const std::vector<float>& rgb, const Environment& env) {
+  ++prepared_count;
   const fs::path folder = dir();
   if (folder.empty() || base::executable_build_id().empty()) return;
   const std::string key = key_text(width, height, rgb, env.face_size, env.levels());
-  Header header{};
-  std::memcpy(header.magic, kMagic, sizeof kMagic);
-  header.face_size = std::uint32_t(env.face_size);
-  header.levels = std::uint32_t(env.levels());
-  header.key_check = check_of(key);
-  std::string bytes(sizeof header, '\0');
-  bytes.append(reinterpret_cast<const char*>(env.irradiance_sh.data()), sizeof env.irradiance_sh);
+  std::string payload(reinterpret_cast<const char*>(env.irradiance_sh.data()), sizeof env.irradiance_sh);
   for (const std::vector<float>& level : env.specular)
-    bytes.append(reinterpret_cast<const char*>(level.data()), level.size() * sizeof(float));
-  header.length = bytes.size() - sizeof header;
-  header.checksum = base::fnv1a(base::kFnvOffset, bytes.data() + sizeof header, header.length);
-  std::memcpy(bytes.data(), &header, sizeof header);
+    payload.append(reinterpret_cast<const char*>(level.data()), level.size() * sizeof(float));
   std::error_code ec;
   fs::create_directories(folder, ec);
   std::string error;
   if (ec)
     error = "cannot make " + folder.string() + ": " + ec.message();
-  else if (base::write_file_whole(file_for(folder, key), bytes, error))
+  else if (base::write_file_whole(file_for(folder, key), base::seal_cache_payload(kMagic, check_of(key), payload), error))
     return;
   const std::lock_guard lock(dir_mutex);
   keep_problem = error;

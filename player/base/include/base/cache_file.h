@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -16,6 +17,13 @@ namespace base {
 inline constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ull;
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t size);
 std::uint64_t word_hash(std::uint64_t hash, std::string_view bytes);
+
+// A cache file's bytes: an 8-character magic naming the kind and version, `key_check` (the second
+// hash of what the payload was made from), the payload's length and checksum, then the payload.
+std::string seal_cache_payload(std::string_view magic, std::uint64_t key_check, std::string_view payload);
+// The payload of such a file when its magic, key check, length and checksum all hold; nothing when
+// any does not (a damaged, truncated or foreign file).
+std::optional<std::string_view> unseal_cache_payload(std::string_view file, std::string_view magic, std::uint64_t key_check);
 
 // "0123456789abcdef" + suffix: the file name for a key.
 std::string cache_file_name(std::uint64_t key, std::string_view suffix);

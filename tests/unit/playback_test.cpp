@@ -132,16 +132,19 @@ TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
   EXPECT_EQ(pl.items.at(0).background, glm::vec3(0.0f, 0.5f, 1.0f));
 }
 
-// The camera's ranges are taken to their ends: elevation [-89, 89] closed, fov (1, 170) open.
+// The camera's ranges are taken to their ends: elevation [-89, 89] closed, fov (1, 170) open, and a
+// turntable period may be any positive time (a turn in half a second).
 TEST(Playlist, CameraValuesAtTheEndsOfTheirRangesAreTaken) {
   const Playlist pl = parse_ok(
       "[[item]]\nscene = \"a.glb\"\ncamera = { motion = \"still\", elevation = -89, fov = 169.9 }\n"
-      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"still\", elevation = 89, fov = 1.1 }\n");
-  ASSERT_EQ(pl.items.size(), 2u);
+      "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"still\", elevation = 89, fov = 1.1 }\n"
+      "[[item]]\nscene = \"c.glb\"\ncamera = { period = 0.5 }\n");
+  ASSERT_EQ(pl.items.size(), 3u);
   EXPECT_EQ(pl.items[0].camera.elevation_deg, -89.0);
   EXPECT_EQ(pl.items[0].camera.fov_deg, 169.9);
   EXPECT_EQ(pl.items[1].camera.elevation_deg, 89.0);
   EXPECT_EQ(pl.items[1].camera.fov_deg, 1.1);
+  EXPECT_EQ(pl.items[2].camera.period_s, 0.5);
 }
 
 TEST(Playlist, SeedZeroIsASeedLikeAnyOther) {
@@ -419,6 +422,8 @@ const ErrorCase error_cases[] = {
      "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a\\\"\\tb\""},
     {"OtherControlCharactersAsHex", ITEM "camera = { motion = \"a\\u0001b\\u007f\" }\n",
      "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a\\x01b\\x7f\""},
+    {"SpacesAndPrintableCharactersAsTheyAre", ITEM "camera = { motion = \"a b~\" }\n",
+     "3:21: item[0].camera.motion: expected one of still, turntable, orbit, file, got \"a b~\""},
     // TOML syntax: toml++'s own words.
     {"SyntaxUnterminatedString", "loop = true\n[[item]]\nscene = \"a.glb\n",
      "3:15: Error while parsing string: unescaped control characters other than TAB (U+0009) are explicitly prohibited"},

@@ -209,6 +209,20 @@ TEST(Timeline, ButtonsAtTheEndsOfANonLoopingPlaylist) {
   EXPECT_EQ(f.item_time, 0.0);
 }
 
+// At the end of a playlist that does not loop, previous() shows the last item that can be shown:
+// the last one itself, or, when its scene has failed since, the one before it.
+TEST(Timeline, PreviousAtTheEndSkipsALastItemThatCannotBeShown) {
+  Timeline tl(make({10, 10, 10}, 0, false), t0, wall0);
+  EXPECT_TRUE(at(tl, 31).finished);
+  tl.set_playable(2, false);
+  tl.previous(t0 + 32);
+  Cue f = at(tl, 32);
+  EXPECT_FALSE(f.finished);
+  EXPECT_EQ(f.item, 1);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+}
+
 TEST(Timeline, UnplayableItemsAreSkipped) {
   Timeline tl(make({4, 6, 10}), t0, wall0);
   tl.set_playable(1, false);

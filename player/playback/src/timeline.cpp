@@ -376,13 +376,14 @@ void Timeline::previous(double now) {
   advance_clock(now);
   detach();
   run_sequential();
-  if (finished_ && !active_) {
+  // From the end of a playlist that does not loop: the last item that can still be shown.
+  if (finished_) {
     const std::int64_t g = find_playable(slot_, -1);
     if (g != none) start(g);
     return;
   }
   if (!active_) return;
-  if (!finished_ && play_time_ - item_start_ < previous_window_s) {
+  if (play_time_ - item_start_ < previous_window_s) {
     const std::int64_t g = find_playable(slot_ - 1, -1);
     start(g == none ? slot_ : g);
   } else {

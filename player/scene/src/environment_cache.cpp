@@ -30,20 +30,22 @@ fs::path dir() {
   return kept_dir;
 }
 
-// Everything that decides the result: the build that computes it, the sizes and the pixels.
-std::string key_text(int width, int height, const std::vector<float>& rgb, int face_size, int levels) {
-  std::string text = base::executable_build_id() + "\n" + std::to_string(width) + "x" + std::to_string(height) + " " +
-                     std::to_string(face_size) + " " + std::to_string(levels) + "\n";
-  text.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));
-  return text;
+// Everything that decides the result (the build that computes it, the sizes and the pixels) under
+// the two hashes: `name` names the file, `check` is kept in it. The pixels are hashed where they lie:
+// an image may be hundreds of megabytes.
+struct Key {
+  std::uint64_t name, check;
+};
+Key key_of(int width, int height, const std::vector<float>& rgb, int face_size, int levels) {
+  const std::string sizes = base::executable_build_id() + "\n" + std::to_string(width) + "x" + std::to_string(height) + " " +
+                            std::to_string(face_size) + " " + std::to_string(levels) + "\n";
+  const std::string_view pixels(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));
+  return {base::fnv1a(base::fnv1a(base::kFnvOffset, sizes.data(), sizes.size()), pixels.data(), pixels.size()),
+          base::word_hash(base::word_hash(0x5eed5eed5eed5eedull, sizes), pixels)};
 }
 
-fs::path file_for(const fs::path& folder, const std::string& key) {
-  return folder / base::cache_file_name(base::fnv1a(base::kFnvOffset, key.data(), key.size()), ".env");
-}
-
-std::uint64_t check_of(const std::string& key) {
-  return base::word_hash(0x5eed5eed5eed5eedull, key);
+fs::path file_for(const fs::path& folder, const Key& key) {
+  return folder / base::cache_file_name(key.name, ".env");
 }
 
 std::size_t payload_floats(int face_size, int levels) {
@@ -74,11 +76,11 @@ std::optional<Environment> kept_environment(int width, int height, const std::ve
   const fs::path folder = dir();
   // A build without an id cannot tell its files from another build's: it keeps none.
   if (folder.empty() || base::executable_build_id().empty()) return std::nullopt;
-  const std::string key = key_text(width, height, rgb, face_size, levels);
+  const Key key = key_of(width, height, rgb, face_size, levels);
   const fs::path path = file_for(folder, key);
   std::string bytes;
   if (!base::read_cache_file(path, bytes)) return std::nullopt;
-  const std::optional<std::string_view> sealed = base::unseal_cache_payload(bytes, kMagic, check_of(key));
+  const std::optional<std::string_view> sealed = base::unseal_cache_payload(bytes, kMagic, key.check);
   if (!sealed || sealed->size() != payload_floats(face_size, levels) * sizeof(float)) {
     std::error_code ec;
     fs::remove(path, ec);
@@ -104,7 +106,7 @@ void keep_environment(int width, int height, const std::vector<float>& rgb, cons
   ++prepared_count;
   const fs::path folder = dir();
   if (folder.empty() || base::executable_build_id().empty()) return;
-  const std::string key = key_text(width, height, rgb, env.face_size, env.levels());
+  const Key key = key_of(width, height, rgb, env.face_size, env.levels());
   std::string payload(reinterpret_cast<const char*>(env.irradiance_sh.data()), sizeof env.irradiance_sh);
   for (const std::vector<float>& level : env.specular)
     payload.append(reinterpret_cast<const char*>(level.data()), level.size() * sizeof(float));
@@ -113,7 +115,7 @@ void keep_environment(int width, int height, const std::vector<float>& rgb, cons
   std::string error;
   if (ec)
     error = "cannot make " + folder.string() + ": " + ec.message();
-  else if (base::write_file_whole(file_for(folder, key), base::seal_cache_payload(kMagic, check_of(key), payload), error))
+  else if (base::write_file_whole(file_for(folder, key), base::seal_cache_payload(kMagic, key.check, payload), error))
     return;
   const std::lock_guard lock(dir_mutex);
   keep_problem = error;

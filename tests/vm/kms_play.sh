@@ -19,6 +19,35 @@ rm -rf "$cache"
 mkdir -p "$out"
 fail() { echo "FAIL: $*"; exit 1; }
 
+# bounded SECONDS OUTPUT COMMAND...: runs COMMAND with its output in OUTPUT; its exit status. A player
+# stuck past SECONDS fails here with where it waits (its kernel stack: a commit the driver never
+# completes shows there) and the kernel's last messages, not at the guest's timeout with nothing to read.
+bounded() {
+  local limit=$1 output=$2 pid
+  shift 2
+  "$@" >"$output" 2>&1 &
+  pid=$!
+  for _ in $(seq 1 $((limit * 10))); do
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  if kill -0 "$pid" 2>/dev/null; then
+    echo "the player (pid $pid) is still running after $limit s; it waits in $(cat "/proc/$pid/wchan" 2>/dev/null):"
+    for task in /proc/"$pid"/task/*; do
+      echo "-- thread ${task##*/} ($(cat "$task/comm" 2>/dev/null))"
+      cat "$task/stack" 2>/dev/null || true
+    done
+    echo "-- the kernel's last messages"
+    dmesg | tail -30
+    kill -ABRT "$pid" 2>/dev/null || true
+    sleep 2
+    kill -KILL "$pid" 2>/dev/null || true
+    cat "$output"
+    fail "the player did not finish within $limit s: $*"
+  fi
+  wait "$pid"
+}
+
 [ -e /dev/dri/card0 ] || fail "no /dev/dri/card0: the VM kernel lacks vkms"
 connector=$(ls -d /sys/class/drm/card0-Virtual-* | head -1)
 echo on > "$connector/status"
@@ -33,9 +62,10 @@ common=(play builtin:demo --platform kms --drm-mode 640x480 --ao off --shader-ca
 
 # The default platform is what a board gets: kms, since no display server runs in the guest.
 echo "== atomic, $frames frames, the platform chosen by default"
-env -u DISPLAY -u WAYLAND_DISPLAY "$player" play builtin:demo --drm-mode 640x480 --ao off --shader-cache "$cache" --status "$out/status.json" \
-  --frames "$frames" --log "$out/atomic.log" --snapshot "$out/drawn.png" --drm-writeback "$out/scanout.png" >"$out/atomic.out" 2>&1 ||
-  { cat "$out/atomic.out"; fail "player exited with $?"; }
+bounded 600 "$out/atomic.out" env -u DISPLAY -u WAYLAND_DISPLAY "$player" play builtin:demo --drm-mode 640x480 --ao off \
+  --shader-cache "$cache" --status "$out/status.json" --frames "$frames" --log "$out/atomic.log" --snapshot "$out/drawn.png" \
+  --drm-writeback "$out/scanout.png" ||
+  { status=$?; cat "$out/atomic.out"; fail "player exited with $status"; }
 cat "$out/atomic.out"
 grep -q "^platform: kms (DRM/KMS on /dev/dri/card0 (vkms), atomic modesetting, XRGB8888, Virtual-1 640x480@" "$out/atomic.out" ||
   fail "the first line does not name kms, atomic modesetting and the mode"
@@ -50,7 +80,7 @@ grep -q "warning" "$out/atomic.out" && fail "warnings while playing"
   fail "what the display shows differs from the frame drawn"
 
 echo "== a warm start: the same player again, its programs from the shader cache"
-"$player" "${common[@]}" --frames 1 >"$out/warm.out" 2>&1 || { cat "$out/warm.out"; fail "player (warm start) exited with $?"; }
+bounded 300 "$out/warm.out" "$player" "${common[@]}" --frames 1 || { status=$?; cat "$out/warm.out"; fail "player (warm start) exited with $status"; }
 grep -q "^shader cache: $cache$" "$out/warm.out" || { cat "$out/warm.out"; fail "the warm start does not name the shader cache"; }
 grep -q "^first frame presented .*; shaders: 0 compiled, [1-9][0-9]* loaded from $cache/programs$" "$out/warm.out" ||
   { cat "$out/warm.out"; fail "the warm start compiled programs, or loaded none, though the cold start had kept them"; }
@@ -58,8 +88,8 @@ grep -q "^first frame presented .*; shaders: [1-9][0-9]* compiled, 0 loaded from
   fail "the cold start did not compile its programs into the empty cache"
 
 echo "== legacy, 10 frames"
-"$player" "${common[@]}" --drm-atomic no --frames 10 --log "$out/legacy.log" >"$out/legacy.out" 2>&1 ||
-  { cat "$out/legacy.out"; fail "player (legacy) exited with $?"; }
+bounded 300 "$out/legacy.out" "$player" "${common[@]}" --drm-atomic no --frames 10 --log "$out/legacy.log" ||
+  { status=$?; cat "$out/legacy.out"; fail "player (legacy) exited with $status"; }
 grep -q "legacy modesetting" "$out/legacy.out" || fail "--drm-atomic no did not use legacy modesetting"
 grep -q "^played 10 frames, 0 error(s)" "$out/legacy.out" || fail "legacy: expected 10 frames and no error"
 

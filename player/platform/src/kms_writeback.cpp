@@ -9,7 +9,9 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 
 namespace platform::kms {
 namespace {
@@ -27,6 +29,21 @@ void xrgb_to_rgba(const std::uint8_t* source, std::uint32_t pitch, std::uint32_t
       pixel[2] = in[0];
       pixel[3] = 255;
     }
+}
+
+using SteadyClock = std::chrono::steady_clock;
+
+// Nonblocking, so that a driver whose commit never completes costs an error and not the process:
+// a blocking commit waits in the kernel, where no timeout of ours reaches. A nonblocking commit is
+// refused with EBUSY while the one before it is still in flight; that is waited out, up to `deadline`.
+// 0, or the errno of the refusal.
+int commit_nonblocking(int fd, drmModeAtomicReq* request, SteadyClock::time_point deadline) {
+  for (;;) {
+    if (drmModeAtomicCommit(fd, request, DRM_MODE_ATOMIC_ALLOW_MODESET | DRM_MODE_ATOMIC_NONBLOCK, nullptr) == 0) return 0;
+    const int code = errno;
+    if ((code != EBUSY && code != EINTR) || SteadyClock::now() >= deadline) return code;
+    poll(nullptr, 0, 2);
+  }
 }
 
 }  // namespace
@@ -51,6 +68,8 @@ bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t
   const std::uint32_t fence_prop = property_id(fd, capture.writeback, DRM_MODE_OBJECT_CONNECTOR, "WRITEBACK_OUT_FENCE_PTR");
   std::int32_t fence = -1;
   bool detached_display = false;
+  const SteadyClock::time_point deadline = SteadyClock::now() + std::chrono::milliseconds(capture.timeout_ms);
+  int code = 0;
   if (ok) {
     // Beside the display where the driver can clone; where it cannot (vkms on 6.1 refuses two
     // encoders on one CRTC), the display connector is detached for the capture: the CRTC still
@@ -61,17 +80,24 @@ bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t
       drmModeAtomicAddProperty(request.get(), capture.writeback, crtc_prop, capture.crtc);
       drmModeAtomicAddProperty(request.get(), capture.writeback, fb_prop, fb);
       drmModeAtomicAddProperty(request.get(), capture.writeback, fence_prop, reinterpret_cast<std::uintptr_t>(&fence));
-      ok = drmModeAtomicCommit(fd, request.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0;
+      fence = -1;
+      code = commit_nonblocking(fd, request.get(), deadline);
+      ok = code == 0;
       detached_display = detach;
-      if (ok || errno != EINVAL) break;
+      if (ok || code != EINVAL) break;
     }
     if (!ok)
-      error = "kms: the commit attaching " + what + " was refused (" + base::errno_text(errno) + "), beside " +
-              capture.display_name + " and without it";
+      error = "kms: the commit attaching " + what + " was refused (" + base::errno_text(code) + ")" +
+              (detached_display ? ", beside " + capture.display_name + " and without it" : std::string());
   }
-  if (ok && fence >= 0) {
+  if (ok && fence < 0) {
+    ok = false;
+    error = "kms: the commit attaching " + what + " gave no out-fence to wait on";
+  }
+  if (ok) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - SteadyClock::now()).count();
     pollfd wait{fence, POLLIN, 0};
-    ok = poll(&wait, 1, capture.timeout_ms) == 1;
+    ok = poll(&wait, 1, static_cast<int>(std::max<std::int64_t>(left, 0))) == 1;
     if (!ok) error = "kms: " + what + " did not complete within " + std::to_string(capture.timeout_ms) + " ms";
   }
   if (fence >= 0) close(fence);
@@ -92,7 +118,9 @@ bool capture_writeback(const WritebackCapture& capture, std::vector<std::uint8_t
   drmModeAtomicAddProperty(restore.get(), capture.writeback, fb_prop, 0);
   if (detached_display)
     drmModeAtomicAddProperty(restore.get(), capture.display_connector, capture.display_connector_crtc, capture.crtc);
-  if (drmModeAtomicCommit(fd, restore.get(), DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) != 0) needs_modeset = true;
+  // Its own deadline: the capture's may be spent, and a display left detached costs more than a wait.
+  if (commit_nonblocking(fd, restore.get(), SteadyClock::now() + std::chrono::milliseconds(capture.timeout_ms)) != 0)
+    needs_modeset = true;
   if (fb != 0) drmModeRmFB(fd, fb);
   drmModeDestroyDumbBuffer(fd, handle);
   return ok;

@@ -17,7 +17,7 @@ struct WritebackCapture {
   std::uint32_t display_connector = 0, display_connector_crtc = 0;
   std::string display_name;   // "HDMI-A-1", for errors
   int width = 0, height = 0;  // the mode's
-  int timeout_ms = 0;         // for the writeback's out-fence
+  int timeout_ms = 0;         // for the commit attaching the writeback and its out-fence; again for detaching it
 };
 
 // Top-down RGBA8 of what the CRTC composes. False and why otherwise. `needs_modeset`: the commit

@@ -1,8 +1,10 @@
 // The player's command line: a thin layer over the app library.
 #include "app/check_command.h"
+#include "app/ctl_command.h"
 #include "app/play_command.h"
 #include "app/render_command.h"
 #include "base/parse.h"
+#include "control/control.h"
 #include "hal/devices.h"
 #include "hal/hal_test.h"
 #include "platform/platform.h"
@@ -145,6 +147,16 @@ int main(int argc, char** argv) {
       "check", "Load scenes as play does, without GL, and say for each whether it plays (exit 1 if any is refused)");
   check_cmd->add_option("scenes", check_scenes, "Scenes to check (.gltf, .glb, builtin:NAME)")->required();
 
+  app::CtlOptions ctl;
+  ctl.control = std::string(control::kDefaultPath);
+  auto* ctl_cmd =
+      cli.add_subcommand("ctl",
+                         "Send one command to a running player through its control socket and print its reply (exit 0: done, 1: "
+                         "refused, 2: no player to ask)");
+  ctl_cmd->add_option("command", ctl.words, "One of " + control::verbs_text())->required();
+  ctl_cmd->add_option("--control", ctl.control, "The player's control socket")->capture_default_str();
+  ctl_cmd->add_option("--timeout", ctl.timeout_s, "Seconds to wait for the reply")->capture_default_str();
+
   app::PlayOptions play;
   std::string play_size = "1024x768";
   auto* play_cmd =
@@ -208,6 +220,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(hal::backend_names()));
   play_cmd->add_option("--buttons-script", play.buttons_script, "Mock buttons: lines of `t_ms BUTTON press|release`");
   play_cmd->add_option("--status", play.status_file, "Status file (JSON, replaced atomically); default the board's status_file");
+  play_cmd->add_option("--control", play.control,
+                       "Listen for commands (player ctl) on the AF_UNIX socket PATH; default the board's control (none "
+                       "without it); off: none");
   play_cmd->add_option("--log", play.log_file,
                        "Write a line per frame: item, state, LED patterns, button actions, frame time, resident memory");
   play_cmd->add_option("--camera-script", play.camera_script, "Mock camera: lines of `t_ms unplug|replug` (with --hal mock)");
@@ -247,5 +262,6 @@ int main(int argc, char** argv) {
   }
   if (info_cmd->parsed()) return app::run_info(info_platform, info_shader_cache, std::cout, std::cerr);
   if (check_cmd->parsed()) return app::run_check(check_scenes, std::cout, std::cerr);
+  if (ctl_cmd->parsed()) return app::run_ctl(ctl, std::cout, std::cerr);
   return 2;
 }

@@ -766,3 +766,71 @@ TEST(Timeline, FrameCameraFollowsTheItem) {
   EXPECT_NEAR(f.camera.azimuth_deg, 12, 1e-9);
   EXPECT_EQ(f.camera.elevation_deg, -30.0);
 }
+
+// `player ctl item N`: the item asked for, from its start, now.
+TEST(Timeline, AnItemAskedForStartsNowAndThePlaylistGoesOnFromIt) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  EXPECT_EQ(at(tl, 1).sequence, 1u);
+  ASSERT_TRUE(tl.show_item(2, t0 + 2));
+  Cue f = at(tl, 2);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_EQ(f.item_time, 0.0);
+  EXPECT_TRUE(f.cut);
+  EXPECT_EQ(f.sequence, 2u);
+  check(tl, {{11.5, 2, 9.5}, {12.5, 0, 0.5}, {16.5, 1, 0.5}});
+  // The item playing, asked for again: its start again.
+  ASSERT_TRUE(tl.show_item(1, t0 + 18));
+  check(tl, {{18, 1, 0}, {24.5, 2, 0.5}});
+}
+
+TEST(Timeline, AnItemThatIsNotThereOrCannotBeShownChangesNothing) {
+  Timeline tl(make({4, 6, 10}), t0, wall0);
+  EXPECT_EQ(at(tl, 1).item, 0);
+  tl.set_playable(1, false);
+  EXPECT_FALSE(tl.show_item(1, t0 + 2));
+  EXPECT_FALSE(tl.show_item(3, t0 + 2));
+  EXPECT_FALSE(tl.show_item(-1, t0 + 2));
+  const Cue f = at(tl, 2);
+  EXPECT_EQ(f.item, 0);
+  EXPECT_EQ(f.item_time, 2.0);
+  EXPECT_FALSE(f.cut);
+  EXPECT_EQ(f.sequence, 1u);
+}
+
+TEST(Timeline, AFinishedPlaylistPlaysAgainFromTheItemAskedFor) {
+  Timeline tl(make({4, 6}, 0.0, false), t0, wall0);
+  EXPECT_TRUE(at(tl, 30).finished);
+  ASSERT_TRUE(tl.show_item(0, t0 + 31));
+  check(tl, {{31, 0, 0}, {36, 1, 1}});
+  EXPECT_FALSE(at(tl, 40.5).finished);
+  EXPECT_TRUE(at(tl, 41.5).finished);
+}
+
+TEST(Timeline, AShuffledPassGoesOnFromTheItemAskedForInItsOwnOrder) {
+  const std::vector<std::vector<int>> order = passes(7, 5, 2);
+  Playlist pl = make(std::vector<double>(5, 1.0));
+  pl.shuffle = true;
+  pl.seed = 7;
+  Timeline tl(pl, t0, wall0);
+  EXPECT_EQ(at(tl, 0.5).item, order[0][0]);
+  const int asked = order[0][3];
+  ASSERT_TRUE(tl.show_item(asked, t0 + 0.75));
+  EXPECT_EQ(at(tl, 1.0).item, asked);
+  // Then the rest of the first pass in its order, then the second pass.
+  EXPECT_EQ(at(tl, 1.8).item, order[0][4]);
+  EXPECT_EQ(at(tl, 2.8).item, order[1][0]);
+}
+
+TEST(Timeline, AnItemAskedForDetachesAWallclockPlaylist) {
+  Playlist pl = make({4, 6, 10});
+  pl.schedule = Schedule::wallclock;
+  Timeline tl(pl, t0, wall0);
+  EXPECT_EQ(at(tl, 1).item, 0);
+  ASSERT_TRUE(tl.show_item(2, t0 + 2));
+  // On its own clock now: item 2 from its start, not the schedule's item 0.
+  check(tl, {{2, 2, 0}, {11.5, 2, 9.5}, {12.5, 0, 0.5}});
+  tl.restart(t0 + 13);  // attached again: the schedule's item, 3 s into its slot
+  const Cue f = at(tl, 13);
+  EXPECT_EQ(f.item, 2);
+  EXPECT_NEAR(f.item_time, 3, 1e-9);
+}

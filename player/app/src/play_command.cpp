@@ -6,6 +6,7 @@
 #include "app/render_command.h"
 #include "base/read_file.h"
 #include "camera_script.h"
+#include "control/server.h"
 
 #include "gl/caps.h"
 #include "gl/gl_api.h"
@@ -56,6 +57,7 @@ bool open_board(const PlayOptions& options, const hal::Clock& clock, hal::BoardC
     board = options.board_file.empty() ? hal::builtin_mock_board() : hal::load_board(options.board_file);
     if (!options.buttons_script.empty()) board.mock_button_script = options.buttons_script;
     if (!options.status_file.empty()) board.status_file = options.status_file;
+    if (!options.control.empty()) board.control = options.control == "off" ? "" : options.control;
     if (backend == hal::Backend::linux_kernel && !options.buttons_script.empty()) {
       err << "error: --buttons-script drives mock buttons; add --hal mock\n";
       return false;
@@ -151,6 +153,14 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   std::string error;
   if (!watch.open(error)) status.report(error);
   if (!signals_open) return 1;
+  control::Server control;
+  if (!board.control.empty()) {
+    // A kiosk plays on without its socket: the problem is reported where its other problems are.
+    if (control.open(board.control, {}, error))
+      out << "control: listening on " << board.control << "\n";
+    else
+      status.report(error);
+  }
   if (!status.service().error().empty()) status.report(status.service().error());
   status.announce_state();                     // `systemctl status` says starting while the shaders compile
   status.set_leds(!devices.problems.empty());  // nothing else can warn yet
@@ -203,9 +213,9 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   SceneCache scenes(loader, caps, status, err);
   SelfCheckSession check(devices.camera.get(), devices.mock_camera, std::move(camera_script), board.self_check_interval_s,
                          clock.devices(), status, kiosk);
-  PlayLoop loop(
-      {options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes, check},
-      std::move(playlist_path), std::move(playlist), resume.frames);
+  PlayLoop loop({options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes,
+                 check, control},
+                std::move(playlist_path), std::move(playlist), resume.frames);
   const int code = loop.run();
   next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames()};
   remake_reason = loop.remake_reason();

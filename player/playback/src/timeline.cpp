@@ -391,6 +391,22 @@ void Timeline::previous(double now) {
   }
 }
 
+bool Timeline::show_item(int item, double now) {
+  const auto n = static_cast<std::int64_t>(playlist_.items.size());
+  if (item < 0 || item >= n || !playable_[static_cast<std::size_t>(item)]) return false;
+  advance_clock(now);
+  detach();
+  run_sequential();
+  const std::int64_t pass = floor_div(slot_, n);
+  std::int64_t position = item;
+  if (shuffled()) {
+    const auto& o = order(pass);
+    position = std::find(o.begin(), o.end(), item) - o.begin();
+  }
+  start(pass * n + position);
+  return true;
+}
+
 void Timeline::restart(double now) {
   advance_clock(now);
   if (mode_ == Mode::wallclock) return;

@@ -124,9 +124,11 @@ void ButtonActions::key(std::string_view key, bool pressed) {
     if (!buttons_[b].key.empty() && buttons_[b].key == key) mock_->inject(b, pressed);
 }
 
-void PollSet::wait(std::initializer_list<int> fds, int timeout_ms) {
+void PollSet::wait(std::initializer_list<int> fds, const std::vector<int>& more, int timeout_ms) {
   fds_.clear();
   for (int fd : fds)
+    if (fd >= 0) fds_.push_back({fd, POLLIN, 0});
+  for (int fd : more)
     if (fd >= 0) fds_.push_back({fd, POLLIN, 0});
   poll(fds_.data(), fds_.size(), timeout_ms);
 }

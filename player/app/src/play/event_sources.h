@@ -82,8 +82,8 @@ class ButtonActions {
 // The poll over every source, made anew each wait (sources come and go: a camera, a display).
 class PollSet {
  public:
-  // Waits until one of `fds` is readable or `timeout_ms` passes; negative fds are left out.
-  void wait(std::initializer_list<int> fds, int timeout_ms);
+  // Waits until one of `fds` or `more` is readable or `timeout_ms` passes; negative fds are left out.
+  void wait(std::initializer_list<int> fds, const std::vector<int>& more, int timeout_ms);
   // Waits for one fd alone.
   static void wait_one(int fd, int timeout_ms);
 

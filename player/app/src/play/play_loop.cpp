@@ -201,6 +201,63 @@ void PlayLoop::act(hal::Action action, double now) {
   }
 }
 
+std::string PlayLoop::command(const control::Command& command, double now) {
+  using control::Verb;
+  switch (command.verb) {
+    case Verb::next:
+      act(hal::Action::next, now);
+      return "ok: next";
+    case Verb::previous:
+      act(hal::Action::previous, now);
+      return "ok: previous";
+    case Verb::restart:
+      act(hal::Action::restart, now);
+      return "ok: restart";
+    case Verb::check:
+      act(hal::Action::check, now);
+      return "ok: a display self-check is asked for";
+    case Verb::pause:
+      if (timeline_->paused()) return "ok: paused already";
+      act(hal::Action::pause, now);
+      return "ok: paused";
+    case Verb::resume:
+      if (!timeline_->paused()) return "ok: playing already";
+      p_.status.note_action("resume");
+      timeline_->resume(now);
+      return "ok: playing";
+    case Verb::reload:
+      p_.status.note_action("reload");
+      if (!playlist_path_.empty()) p_.loader.load_playlist(playlist_path_);
+      p_.scenes.reload_all();
+      return playlist_path_.empty() ? "ok: reloading every scene" : "ok: reloading the playlist and every scene";
+    case Verb::item: {
+      const auto count = static_cast<int>(timeline_->playlist().items.size());
+      if (command.item >= count)
+        return "error: item " + std::to_string(command.item) + ": the playlist has " +
+               (count == 1 ? std::string("one item, 0") : std::to_string(count) + " items, 0 to " + std::to_string(count - 1));
+      if (!timeline_->show_item(command.item, now))
+        return "error: item " + std::to_string(command.item) + ": its scene cannot be shown (see the status file's errors)";
+      p_.status.note_action("item:" + std::to_string(command.item));
+      return "ok: item " + std::to_string(command.item);
+    }
+  }
+  return "error: unknown command";
+}
+
+void PlayLoop::serve_control(double now) {
+  p_.control.serve(
+      p_.clock.real_seconds(),
+      [&](const control::Command& c, const control::Server::Peer& peer) {
+        std::string reply = command(c, now);
+        p_.out << "control: " << control::format_command(c) << " from pid " << peer.pid << " (uid " << peer.uid << "): " << reply
+               << "\n"
+               << std::flush;
+        return reply;
+      },
+      [&](const std::string& line) { p_.out << line << "\n"
+                                            << std::flush; });
+}
+
 void PlayLoop::load_for(const playback::Cue& cue) {
   p_.scenes.request(cue);
   if (p_.scenes.step_uploads(p_.drawer.shown_key())) p_.drawer.configure_again();
@@ -263,9 +320,11 @@ void PlayLoop::wait_for_events(double next_frame) {
     timeout_ms = p_.platform.poll_interval_ms();
   else if (!p_.clock.manual() && p_.options.fps > 0.0)
     timeout_ms = std::max(0, static_cast<int>((next_frame - p_.clock.now()) * 1000.0));
+  control_fds_.clear();
+  p_.control.fds(control_fds_);
   poll_.wait({p_.signals.fd(), p_.watch.fd(), p_.loader.fd(), p_.platform.event_fd(), p_.devices.buttons->fd(),
               p_.devices.status->fd(), p_.devices.camera ? p_.devices.camera->fd() : -1},
-             timeout_ms);
+             control_fds_, timeout_ms);
 }
 
 void PlayLoop::read_buttons(double now) {
@@ -366,6 +425,7 @@ int PlayLoop::run() {
     if (next == Next::remake) return kRemake;
     const double now = p_.clock.now();
     read_buttons(now);
+    serve_control(now);
     p_.devices.status->update();
     if (!p_.platform.presenting()) {
       play_unseen(now);

@@ -2,6 +2,7 @@
 // The play loop: one poll over every event source, then a frame when one is due. It owns nothing:
 // play_command.cpp opens the pieces and hands them over; the loop passes events between them.
 #include "app/play_command.h"
+#include "control/server.h"
 #include "hal/devices.h"
 #include "loader.h"
 #include "platform/platform.h"
@@ -42,6 +43,7 @@ struct PlayPieces {
   FrameDrawer& drawer;
   SceneCache& scenes;
   SelfCheckSession& check;
+  control::Server& control;  // closed when no socket was asked for
 };
 
 class PlayLoop {
@@ -69,6 +71,8 @@ class PlayLoop {
   void wait_for_events(double next_frame);
   void read_buttons(double now);
   void act(hal::Action action, double now);
+  void serve_control(double now);
+  std::string command(const control::Command& command, double now);
   // Asks for the cue's scenes and makes this frame's share of the uploads.
   void load_for(const playback::Cue& cue);
   void play_unseen(double now);
@@ -87,6 +91,7 @@ class PlayLoop {
   PollSet poll_;
   std::vector<ContentWatch::Change> changes_;
   std::vector<hal::Action> actions_;
+  std::vector<int> control_fds_;
   long long frame_;
   int last_item_ = -1;
   double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown

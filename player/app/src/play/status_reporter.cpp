@@ -89,8 +89,12 @@ void StatusReporter::open_log(const std::string& path, bool append) {
 }
 
 void StatusReporter::note_action(hal::Action action) {
+  note_action(hal::to_string(action));
+}
+
+void StatusReporter::note_action(std::string_view name) {
   if (!pending_actions_.empty()) pending_actions_ += ",";
-  pending_actions_ += hal::to_string(action);
+  pending_actions_ += name;
 }
 
 void StatusReporter::frame_presented(const FrameLogLine& line) {

@@ -66,6 +66,8 @@ class StatusReporter {
   void open_log(const std::string& path, bool append);
   // A button action, for the log line of the frame it acts on.
   void note_action(hal::Action action);
+  // A control command that is no button's action ("resume", "reload", "item=2"), in the same field.
+  void note_action(std::string_view name);
   // After a presented frame: its log line (when logging) and its time for the statistics.
   void frame_presented(const FrameLogLine& line);
 

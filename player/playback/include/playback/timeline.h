@@ -73,6 +73,11 @@ class Timeline {
   void next(double now);
   void previous(double now);
   void restart(double now);
+  // The playlist's item `item` (counted from 0, as the status file counts) starts now, in the pass
+  // that is playing: a shuffled playlist goes on from that item's place in its pass; a finished one
+  // plays again from there. Detaches a wallclock timeline, as next() does. False, and nothing
+  // changes, when the playlist has no such item or its scene cannot be shown.
+  bool show_item(int item, double now);
 
   // While paused the playlist clock stops: item_time and the camera hold. Buttons still work.
   void pause(double now);

@@ -52,7 +52,8 @@ TEST(ControlCommand, AMalformedCommandSaysWhatWasExpected) {
       {"item 2x", "item: expected an item number from 0 (as the status file counts), got '2x'"},
       {"item 1000001", "item: expected an item number from 0 (as the status file counts), got '1000001'"},
       {"next\n\n", "unknown command 'next\\x0a' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
-      {"a\x01'b\\", "unknown command 'a\\x01\\x27b\\x5c' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
+      {"a\x01'b\\",
+       "unknown command 'a\\x01\\x27b\\x5c' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
   };
   for (const auto& c : cases) {
     Command command;
@@ -62,7 +63,8 @@ TEST(ControlCommand, AMalformedCommandSaysWhatWasExpected) {
   }
   Command command;
   std::string error;
-  EXPECT_TRUE(control::parse_command(std::string(control::kMaxMessage, 'x').replace(0, 5, "next\n").substr(0, 5), command, error));
+  EXPECT_TRUE(
+      control::parse_command(std::string(control::kMaxMessage, 'x').replace(0, 5, "next\n").substr(0, 5), command, error));
   EXPECT_FALSE(control::parse_command("next" + std::string(control::kMaxMessage - 3, ' '), command, error));
   EXPECT_EQ(error, "a command of 257 bytes, more than 256");
 }
@@ -307,8 +309,10 @@ TEST_F(ControlServer, AFileThatIsNotASocketIsLeftAsItIs) {
 TEST_F(ControlServer, NoPlayerListeningIsSaidPlainly) {
   std::string reply, error;
   EXPECT_FALSE(control::send_command(path_, "next", 1000, reply, error));
-  EXPECT_EQ(error, path_ + ": No such file or directory (no player listens there: is it running, with --control or the "
-                           "board's control = \"" + path_ + "\"?)");
+  EXPECT_EQ(error, path_ +
+                       ": No such file or directory (no player listens there: is it running, with --control or the "
+                       "board's control = \"" +
+                       path_ + "\"?)");
 }
 
 // Another user, neither root nor in ssao-player-control, is refused before its command is read.

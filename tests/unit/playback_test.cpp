@@ -389,6 +389,8 @@ const ErrorCase error_cases[] = {
      "5:16: item[0].camera.keys[0].t: expected 0 (the first key is the item's start), got 1"},
     {"OrbitTBeyondItem", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [ { t = 0 }, { t = 12 } ]\n",
      "5:27: item[0].camera.keys[1].t: expected a time within the item's 10 s, got 12"},
+    {"OrbitKeyDistanceZero", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [ { t = 0 }, { t = 1, distance = 0.0 } ]\n",
+     "5:41: item[0].camera.keys[1].distance: expected a multiple of the fitting distance > 0, got 0"},
     {"OrbitKeyWithoutT", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [ { azimuth = 3 }, { t = 1 } ]\n",
      "5:10: item[0].camera.keys[0].t: expected a time in seconds, got nothing"},
     {"OrbitKeyUnknownKey", ITEM "[item.camera]\nmotion = \"orbit\"\nkeys = [ { t = 0, roll = 3 }, { t = 1 } ]\n",

@@ -834,3 +834,28 @@ TEST(Timeline, AnItemAskedForDetachesAWallclockPlaylist) {
   EXPECT_EQ(f.item, 2);
   EXPECT_NEAR(f.item_time, 3, 1e-9);
 }
+
+// Durations that are no binary fractions: a stall that ends on an item boundary lands, within
+// rounding, on one of the two items that meet there, and returns (whole passes are skipped by
+// division, whose rounding may overshoot by one pass and is stepped back).
+TEST(Timeline, AStallThatEndsOnABoundaryLandsBesideItWhateverTheRounding) {
+  const std::vector<double> durations = {0.1, 0.2};
+  for (int n = 1; n <= 3000; ++n) {
+    Timeline tl(make(durations), t0, wall0);
+    at(tl, 0);
+    // n x 0.1 s, computed as a multiple of the pass where n is one (45 s is one such end).
+    const double t = n % 3 == 0 ? (n / 3) * 0.3 : n * 0.1;
+    const Cue f = at(tl, t);
+    SCOPED_TRACE("t = " + std::to_string(t));
+    ASSERT_TRUE(f.item == 0 || f.item == 1);
+    const double d = durations[static_cast<std::size_t>(f.item)];
+    ASSERT_GE(f.item_time, 0.0);
+    ASSERT_LE(f.item_time, d);
+    // Where in the 0.3 s pass t lies: 0 (item 0 starts), 0.1 (item 1 starts) or 0.2 (inside item 1).
+    const int third = n % 3;
+    const double start_of_item = f.item == 0 ? 0.0 : 0.1;
+    const double in_pass = start_of_item + f.item_time;
+    const double expected = third * 0.1;
+    EXPECT_TRUE(std::abs(in_pass - expected) < 1e-6 || (third == 0 && std::abs(in_pass - 0.3) < 1e-6)) << in_pass;
+  }
+}

@@ -23,8 +23,7 @@ int left_ms(Clock::time_point deadline) {
 
 }  // namespace
 
-bool send_command(const std::string& path, std::string_view message, int timeout_ms, std::string& reply,
-                  std::string& error) {
+bool send_command(const std::string& path, std::string_view message, int timeout_ms, std::string& reply, std::string& error) {
   const Clock::time_point deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
   sockaddr_un address{};
   address.sun_family = AF_UNIX;

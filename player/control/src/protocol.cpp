@@ -8,8 +8,8 @@ namespace control {
 namespace {
 
 constexpr base::Name<Verb> kVerbs[] = {
-    {Verb::next, "next"},       {Verb::previous, "previous"}, {Verb::pause, "pause"},     {Verb::resume, "resume"},
-    {Verb::check, "check"},     {Verb::reload, "reload"},     {Verb::restart, "restart"}, {Verb::item, "item"},
+    {Verb::next, "next"},   {Verb::previous, "previous"}, {Verb::pause, "pause"},     {Verb::resume, "resume"},
+    {Verb::check, "check"}, {Verb::reload, "reload"},     {Verb::restart, "restart"}, {Verb::item, "item"},
 };
 static_assert(base::in_enum_order(kVerbs));
 
@@ -33,7 +33,9 @@ std::string shown(std::string_view text) {
 
 }  // namespace
 
-std::string_view to_string(Verb verb) { return base::name_of(kVerbs, verb); }
+std::string_view to_string(Verb verb) {
+  return base::name_of(kVerbs, verb);
+}
 
 std::string verbs_text() {
   std::vector<std::string> names = base::names_of(kVerbs);
@@ -77,6 +79,8 @@ std::string format_command(const Command& command) {
   return text;
 }
 
-bool reply_ok(std::string_view reply) { return reply == "ok" || reply.starts_with("ok: "); }
+bool reply_ok(std::string_view reply) {
+  return reply == "ok" || reply.starts_with("ok: ");
+}
 
 }  // namespace control

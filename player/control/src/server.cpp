@@ -19,8 +19,8 @@ bool address_of(const std::string& path, sockaddr_un& address, std::string& erro
   address = {};
   address.sun_family = AF_UNIX;
   if (path.empty() || path.size() >= sizeof address.sun_path) {
-    error = "control: the socket's path '" + path + "' is empty or longer than " +
-            std::to_string(sizeof address.sun_path - 1) + " bytes";
+    error = "control: the socket's path '" + path + "' is empty or longer than " + std::to_string(sizeof address.sun_path - 1) +
+            " bytes";
     return false;
   }
   std::memcpy(address.sun_path, path.data(), path.size());
@@ -33,7 +33,9 @@ bool someone_listens(const sockaddr_un& address) {
   return probe && connect(probe.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
 }
 
-void send_reply(int fd, std::string_view reply) { send(fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT); }
+void send_reply(int fd, std::string_view reply) {
+  send(fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+}
 
 // Replies and reads what the client sent, so that closing does not reset the connection (a socket
 // closed with a message unread makes the peer's read fail, reply or not).
@@ -82,8 +84,8 @@ bool Server::open(const std::string& path, const Limits& limits, std::string& er
   chmod(path.c_str(), 0660);
   group control_group{}, *found = nullptr;
   char names[4096];
-  has_control_group_ = getgrnam_r(std::string(kControlGroup).c_str(), &control_group, names, sizeof names, &found) == 0 &&
-                       found != nullptr;
+  has_control_group_ =
+      getgrnam_r(std::string(kControlGroup).c_str(), &control_group, names, sizeof names, &found) == 0 && found != nullptr;
   if (has_control_group_) {
     control_gid_ = control_group.gr_gid;
     // Fails where the player is neither root nor in the group: then only root and its own user may.
@@ -147,9 +149,9 @@ void Server::accept_all(double now_s, const std::function<void(const std::string
       log("control: refused a connection, " + refusal);
     }
     if (waiting_.size() >= kMaxWaiting) {
-      refuse(fd.get(), "error: " + (refusal.empty() ? "busy: " + std::to_string(kMaxWaiting) +
-                                                          " connections wait for their command already"
-                                                    : refusal));
+      refuse(fd.get(),
+             "error: " + (refusal.empty() ? "busy: " + std::to_string(kMaxWaiting) + " connections wait for their command already"
+                                          : refusal));
       if (refusal.empty())
         log("control: refused a connection from " + describe(peer) + ": " + std::to_string(kMaxWaiting) +
             " connections wait already");
@@ -187,8 +189,9 @@ void Server::serve(double now_s, const std::function<std::string(const Command&,
         send_reply(it->fd.get(), "error: too many commands (more than " + std::to_string(limits_.burst) + " at once, then " +
                                      std::to_string(limits_.per_second) + " a second): this one was ignored");
         log("control: ignored a command from " + describe(it->peer) + ": past the rate limit");
-      } else if (!parse_command(std::string_view(buffer_.data(), std::min(size, buffer_.size())), command, error) ||
-                 size > kMaxMessage) {
+      } else if (!parse_command(std::string_view(buffer_.data(), std::min(size, buffer_.size())), command, error)) {
+        // The buffer holds one byte more than a command may, so a longer one always fails; its
+        // error names its whole length.
         if (size > kMaxMessage)
           error = "a command of " + std::to_string(size) + " bytes, more than " + std::to_string(kMaxMessage);
         send_reply(it->fd.get(), "error: " + error);

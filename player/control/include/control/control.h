@@ -37,7 +37,6 @@ bool reply_ok(std::string_view reply);
 
 // Sends one message to the socket at `path` and reads the reply, within `timeout_ms` in all.
 // False and why (no socket, no player listening, no permission, no reply in time).
-bool send_command(const std::string& path, std::string_view message, int timeout_ms, std::string& reply,
-                  std::string& error);
+bool send_command(const std::string& path, std::string_view message, int timeout_ms, std::string& reply, std::string& error);
 
 }  // namespace control

@@ -18,9 +18,9 @@ namespace control {
 class Server {
  public:
   struct Limits {
-    int burst = 10;                // commands at once
-    int per_second = 2;            // and then this many a second
-    double message_wait_s = 2.0;   // a connection that sends nothing in this time is closed
+    int burst = 10;               // commands at once
+    int per_second = 2;           // and then this many a second
+    double message_wait_s = 2.0;  // a connection that sends nothing in this time is closed
   };
   static constexpr std::size_t kMaxWaiting = 8;  // connections beyond these are refused at once
 

@@ -203,11 +203,12 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
   top.only({"board", "display", "buttons", "button", "led", "camera", "mock"});
   if (const auto* t = table("board")) {
     const Fields f(*t, source_name, "board.");
-    f.only({"name", "consumer", "status_file", "control", "self_check_interval_s"});
+    f.only({"name", "consumer", "status_file", "control", "metrics_file", "self_check_interval_s"});
     b.name = f.str("name", "");
     b.consumer = f.str("consumer", b.consumer);
     b.status_file = f.str("status_file", "");
     b.control = f.str("control", "");
+    b.metrics_file = f.str("metrics_file", "");
     b.self_check_interval_s = static_cast<double>(f.integer("self_check_interval_s", 0, 0, 86400 * 7));
   }
   if (const auto* t = table("display")) {

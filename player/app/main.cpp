@@ -220,6 +220,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(hal::backend_names()));
   play_cmd->add_option("--buttons-script", play.buttons_script, "Mock buttons: lines of `t_ms BUTTON press|release`");
   play_cmd->add_option("--status", play.status_file, "Status file (JSON, replaced atomically); default the board's status_file");
+  play_cmd->add_option("--metrics", play.metrics_file,
+                       "Write Prometheus metrics to FILE (node_exporter's textfile collector: name it *.prom) at every "
+                       "status update, replaced whole; default the board's metrics_file");
   play_cmd->add_option("--control", play.control,
                        "Listen for commands (player ctl) on the AF_UNIX socket PATH; default the board's control (none "
                        "without it); off: none");

@@ -26,6 +26,7 @@ TEST(Board, ParsesButtonsLedsCameraAndDefaults) {
 name = "test"
 status_file = "/run/x/status.json"
 control = "/run/x/control"
+metrics_file = "/var/lib/prometheus/node-exporter/ssao-player.prom"
 [buttons]
 debounce_ms = 30
 [[button]]
@@ -68,6 +69,7 @@ button_script = "buttons.script"
   EXPECT_EQ(b.mock_button_script, "/etc/player/buttons.script");
   EXPECT_EQ(b.status_file, "/run/x/status.json");
   EXPECT_EQ(b.control, "/run/x/control");
+  EXPECT_EQ(b.metrics_file, "/var/lib/prometheus/node-exporter/ssao-player.prom");
 }
 
 TEST(Board, ErrorsNameFileFieldAndExpectation) {
@@ -90,9 +92,9 @@ TEST(Board, ErrorsNameFileFieldAndExpectation) {
 // A key the format does not have is a typo or a misunderstanding, at any level: refused with its
 // position and the keys that level has, as playlists and display files refuse theirs.
 TEST(Board, RefusesUnknownKeysAtEveryLevel) {
-  EXPECT_EQ(
-      error_of("[board]\nname = \"kiosk\"\nbackend = \"linux\"\n"),
-      "b.toml:3:11: board.backend: unknown key (expected one of name, consumer, status_file, control, self_check_interval_s)");
+  EXPECT_EQ(error_of("[board]\nname = \"kiosk\"\nbackend = \"linux\"\n"),
+            "b.toml:3:11: board.backend: unknown key (expected one of name, consumer, status_file, control, metrics_file, "
+            "self_check_interval_s)");
   EXPECT_EQ(error_of("backend = \"linux\"\n"),
             "b.toml:1:11: backend: unknown key (expected one of board, display, buttons, button, led, camera, mock)");
   EXPECT_EQ(error_of("[display]\nrotate = 90\n"), "b.toml:2:10: display.rotate: unknown key (expected one of rotation)");
@@ -153,6 +155,7 @@ TEST(Board, ShippedBoardFilesParse) {
     EXPECT_TRUE(b.camera.has_value());
     // The boards a service runs on listen for `player ctl` where the unit's RuntimeDirectory is.
     EXPECT_EQ(b.control, std::string(f) == "mock.toml" ? "" : "/run/ssao-player/control");
+    EXPECT_EQ(b.metrics_file, std::string(f) == "mock.toml" ? "" : "/run/ssao-player/ssao-player.prom");
   }
   EXPECT_EQ(builtin_mock_board().control, "") << "no socket unless a board file or --control asks for one";
 }

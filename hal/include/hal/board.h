@@ -57,6 +57,7 @@ struct BoardConfig {
   std::optional<CameraConfig> camera;
   std::string status_file;
   std::string control;               // the control socket's path (player ctl, the fleet agent); empty: none
+  std::string metrics_file;          // Prometheus textfile-collector file; empty: none
   double self_check_interval_s = 0;  // the player's display self-check period; 0: only on demand
   // [display] rotation: how far the player turns its frames (clockwise, as seen) for a display mounted
   // turned; done by the renderer, since many boards cannot rotate the scanout. 0, 90, 180 or 270.

@@ -5,6 +5,7 @@
 
 #include <sys/eventfd.h>
 
+#include <chrono>
 #include <sstream>
 
 namespace app {
@@ -31,7 +32,7 @@ void Loader::set_scene_options(const scene::LoadOptions& options) {
 void Loader::load_scene(const std::string& key) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::scene, key, nullptr, nullptr, nullptr, {}, {}});
+    jobs_.push_back({Result::Kind::scene, key, nullptr, nullptr, nullptr, {}, {}, 0.0});
   }
   work_.notify_one();
 }
@@ -39,7 +40,7 @@ void Loader::load_scene(const std::string& key) {
 void Loader::load_playlist(const std::string& path) {
   {
     std::lock_guard lock(mutex_);
-    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, nullptr, {}, {}});
+    jobs_.push_back({Result::Kind::playlist, path, nullptr, nullptr, nullptr, {}, {}, 0.0});
   }
   work_.notify_one();
 }
@@ -95,6 +96,7 @@ void Loader::run() {
       jobs_.pop_front();
       ++running_;
     }
+    const auto started = std::chrono::steady_clock::now();
     if (job.kind == Result::Kind::scene) {
       auto scene = std::make_shared<scene::Scene>();
       std::ostringstream log;  // warnings are not errors: the item plays, and the status says them
@@ -122,6 +124,7 @@ void Loader::run() {
       auto playlist = std::make_shared<playback::Playlist>();
       if (playback::load_playlist(job.path, playlist_options_, *playlist, job.error)) job.playlist = std::move(playlist);
     }
+    job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     {
       std::lock_guard lock(mutex_);
       done_.push_back(std::move(job));

@@ -59,6 +59,7 @@ class Loader {
     std::shared_ptr<const playback::Playlist> playlist;
     std::string error;                  // empty on success
     std::vector<std::string> warnings;  // "spec: what" for what loaded anyway (a texture drawn white)
+    double seconds = 0.0;               // the load on the loader thread: read, decoded, checked
   };
 
   explicit Loader(playback::ParseOptions playlist_options);

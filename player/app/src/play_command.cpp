@@ -58,6 +58,7 @@ bool open_board(const PlayOptions& options, const hal::Clock& clock, hal::BoardC
     if (!options.buttons_script.empty()) board.mock_button_script = options.buttons_script;
     if (!options.status_file.empty()) board.status_file = options.status_file;
     if (!options.control.empty()) board.control = options.control == "off" ? "" : options.control;
+    if (!options.metrics_file.empty()) board.metrics_file = options.metrics_file;
     if (backend == hal::Backend::linux_kernel && !options.buttons_script.empty()) {
       err << "error: --buttons-script drives mock buttons; add --hal mock\n";
       return false;
@@ -144,14 +145,14 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   if (!open_board(options, clock.devices(), board, devices, err)) return 1;
   KioskState kiosk;
   StatusReporter status(*devices.status, kiosk, clock, err);
-  for (const std::string& problem : devices.problems) status.report(problem);
+  for (const std::string& problem : devices.problems) status.report(ErrorKind::device, problem);
   std::vector<CameraStep> camera_script;
   if (!load_camera_script(options, devices, camera_script, err)) return 1;
   SignalSource signals;
   ContentWatch watch;
   const bool signals_open = signals.open();
   std::string error;
-  if (!watch.open(error)) status.report(error);
+  if (!watch.open(error)) status.report(ErrorKind::content, error);
   if (!signals_open) return 1;
   control::Server control;
   if (!board.control.empty()) {
@@ -159,9 +160,9 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
     if (control.open(board.control, {}, error))
       out << "control: listening on " << board.control << "\n";
     else
-      status.report(error);
+      status.report(ErrorKind::control, error);
   }
-  if (!status.service().error().empty()) status.report(status.service().error());
+  if (!status.service().error().empty()) status.report(ErrorKind::service, status.service().error());
   status.announce_state();                     // `systemctl status` says starting while the shaders compile
   status.set_leds(!devices.problems.empty());  // nothing else can warn yet
 
@@ -207,6 +208,15 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
       << playlist->items.size() << " item(s)\n"
       << std::flush;
   status.open_log(options.log_file, resume.resumed);
+  if (!board.metrics_file.empty()) {
+    Metrics base;
+    base.version = PLAYER_VERSION;
+    base.platform = platform.name();
+    base.renderer = caps.renderer;
+    base.start_unix_s = resume.wall_start;
+    status.open_metrics(board.metrics_file, base);
+    status.gpu_reset_survived(resume.gpu_resets);
+  }
   if (!options.out_dir.empty()) fs::create_directories(options.out_dir);
 
   ButtonActions buttons(board.buttons, devices.mock_buttons);
@@ -217,7 +227,7 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
                  check, control},
                 std::move(playlist_path), std::move(playlist), resume.frames);
   const int code = loop.run();
-  next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames()};
+  next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames(), resume.gpu_resets};
   remake_reason = loop.remake_reason();
   return code;
 }

@@ -33,6 +33,7 @@ struct PlayOptions {
   std::string buttons_script;      // mock buttons: `t_ms BUTTON press|release` lines
   std::string status_file;         // overrides the board's
   std::string control;             // --control: the control socket's path, overriding the board's; "off": none
+  std::string metrics_file;        // --metrics: Prometheus textfile-collector file, overriding the board's
   std::string log_file;            // a line per frame: frame, item, state, leds, actions, times, memory (tests, benchmarks)
   std::string camera_script;       // mock camera: `t_ms unplug|replug` lines (tests)
   std::string shader_cache;        // --shader-cache: a folder, "off", or empty for the default (app/src/shader_cache.h)

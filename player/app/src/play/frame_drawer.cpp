@@ -81,7 +81,7 @@ void FrameDrawer::prepare(const playback::Cue& cue, const std::string& key, cons
     }
     configured_ok_ = output_->configure(settings_for(item), *gpu_, present_.srgb, error);
     if (!configured_ok_)
-      status.report(key + ": " + error);
+      status.report(ErrorKind::content, key + ": " + error);
     else if (!output_->adjustment().empty())
       status.note(key + ": " + output_->adjustment());
     std::string camera_note;  // once per configuration: the frames that follow aim without a word
@@ -121,7 +121,7 @@ void FrameDrawer::end_frame(bool scene_timed, StatusReporter& status) {
   if (timer_.poll(times) && gpu_ != nullptr && scene_timed && output_ == &view_output_)
     render::note_raster_time(view_output_.targets(), render::to_pass_times(times, timer_.gpu_timed()));
   if (!gl_error_.empty()) {
-    status.report("GL: " + gl_error_);
+    status.report(ErrorKind::gpu, "GL: " + gl_error_);
     gl_error_.clear();
   }
 }

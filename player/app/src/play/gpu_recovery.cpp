@@ -15,7 +15,7 @@ void GpuWatch::look_for_errors(StatusReporter& status) {
   if (gl_status != GL_NO_ERROR) {
     char text[64];
     std::snprintf(text, sizeof text, "GL error 0x%04x during playback", gl_status);
-    status.report(text);
+    status.report(ErrorKind::gpu, text);
   }
 }
 
@@ -48,6 +48,7 @@ int play_with_recovery(const PlaySession& session, std::ostream& out, std::ostre
           << "); exiting (" << kGpuLost << ") for the service manager to restart the player\n";
       return kGpuLost;
     }
+    next.gpu_resets = resume.gpu_resets + 1;
     resume = next;
     out << "remake: the platform, its context and every GL resource are made anew (" << reason << "); playing on from frame "
         << resume.frames << "\n"

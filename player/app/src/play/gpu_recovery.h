@@ -6,6 +6,7 @@
 #include "hal/clock.h"
 #include "play/play_clock.h"
 
+#include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <string>
@@ -27,6 +28,7 @@ struct Resume {
   double wall_start = wall_seconds();
   hal::Nanos manual_now{0};
   long long frames = 0;
+  std::uint64_t gpu_resets = 0;  // sessions made anew so far (the metrics count them)
 };
 
 // What a session's GL context says of itself.

@@ -62,7 +62,7 @@ void PlayLoop::update_status(bool force) {
   p_.check.append_warnings(report.warnings);
   p_.scenes.append_warnings(report.warnings);
   report.self_check = p_.check.last_verdict();
-  p_.status.publish(std::move(report));
+  p_.status.publish(std::move(report), timeline_ ? last_item_ : -1);
 }
 
 void PlayLoop::watch_content() {
@@ -76,7 +76,7 @@ void PlayLoop::watch_content() {
   }
   std::vector<std::string> problems;
   p_.watch.watch(folders, problems);
-  for (const std::string& problem : problems) p_.status.report(problem);
+  for (const std::string& problem : problems) p_.status.report(ErrorKind::content, problem);
 }
 
 void PlayLoop::apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now) {
@@ -94,7 +94,7 @@ void PlayLoop::drain_content() {
     if (change.path != playlist_path_) {
       p_.scenes.reload(change.path);
     } else if (change.deleted) {
-      p_.status.report(change.path + ": the playlist was deleted (the last good one keeps playing)");
+      p_.status.report(ErrorKind::content, change.path + ": the playlist was deleted (the last good one keeps playing)");
     } else {
       p_.loader.load_playlist(change.path);
     }
@@ -107,7 +107,7 @@ void PlayLoop::drain_loader() {
     if (result.kind == Loader::Result::Kind::scene) {
       p_.scenes.take(result, *timeline_);
     } else if (!result.error.empty()) {
-      p_.status.report(result.error + " (the last good playlist keeps playing)");
+      p_.status.report(ErrorKind::content, result.error + " (the last good playlist keeps playing)");
     } else {
       // Scenes it names anew load when their items come up; changed scene files come through inotify.
       apply_playlist(result.playlist, p_.clock.now());
@@ -126,7 +126,7 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
         break;
       case platform::EventType::resized: {
         std::string error;
-        if (!p_.drawer.resized(error)) p_.status.report(error);
+        if (!p_.drawer.resized(error)) p_.status.report(ErrorKind::display, error);
         break;
       }
       case platform::EventType::display_lost:
@@ -142,7 +142,7 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
         p_.drawer.configure_again();
         break;
       case platform::EventType::warning:
-        p_.status.report(p_.platform.last_error());
+        p_.status.report(ErrorKind::display, p_.platform.last_error());
         break;
       case platform::EventType::remake:
         remake_reason_ = p_.platform.last_error();
@@ -331,7 +331,7 @@ void PlayLoop::read_buttons(double now) {
   actions_.clear();
   p_.buttons.read(*p_.devices.buttons, actions_);
   for (hal::Action action : actions_) act(action, now);
-  if (!p_.devices.buttons->last_error().empty()) p_.status.report(p_.devices.buttons->last_error());
+  if (!p_.devices.buttons->last_error().empty()) p_.status.report(ErrorKind::device, p_.devices.buttons->last_error());
 }
 
 std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool& stop, int& exit_code) {

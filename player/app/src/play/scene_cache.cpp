@@ -54,7 +54,7 @@ void SceneCache::take(Loader::Result& result, playback::Timeline& timeline) {
   if (found == scenes_.end()) return;  // no longer in the playlist
   CachedScene& scene = found->second;
   if (!result.error.empty()) {
-    status_.report(result.error);
+    status_.report(ErrorKind::content, result.error);
     if (!scene.gpu) {  // never loaded: skip its items; a reload that fails keeps the old content
       scene.error = result.error;
       set_playable(result.path, false, timeline);
@@ -62,6 +62,7 @@ void SceneCache::take(Loader::Result& result, playback::Timeline& timeline) {
     return;
   }
   scene.error.clear();
+  status_.scene_loaded(result.seconds);
   scene.warnings = std::move(result.warnings);
   for (const std::string& warning : scene.warnings) err_ << "warning: " << warning << "\n";
   set_playable(result.path, true, timeline);
@@ -84,7 +85,7 @@ bool SceneCache::step_uploads(const std::string& shown) {
     left -= std::min(left, std::max<size_t>(scene.incoming->bytes() - before, 1));
     if (!done) continue;
     if (scene.incoming->failed()) {
-      status_.report(key + ": " + scene.incoming->error());
+      status_.report(ErrorKind::content, key + ": " + scene.incoming->error());
       scene.incoming.reset();
       continue;
     }
@@ -124,7 +125,8 @@ void SceneCache::pose(int item, double item_time) {
     std::string error;
     const scene::Rig* rig = scene.gpu->rig().get();
     if (!scene::select_animation(rig, animation_specs_[i], selection, error)) {
-      status_.report(keys_[i] + ": item[" + std::to_string(i) + "].animation: " + error + "; the scene is shown at rest");
+      status_.report(ErrorKind::content,
+                     keys_[i] + ": item[" + std::to_string(i) + "].animation: " + error + "; the scene is shown at rest");
       selection = scene::Rig::kNoAnimation;
     }
   }

@@ -32,7 +32,7 @@ void SelfCheckSession::start_when_due(double now, const render::PresentTarget& p
 void SelfCheckSession::start(double now, const render::PresentTarget& present, int w, int h) {
   requested_ = false;
   if (camera_ == nullptr) {
-    status_.report("self-check: the board has no camera");
+    status_.report(ErrorKind::self_check, "self-check: the board has no camera");
     return;
   }
   const std::vector<uint8_t> rgba = render::read_presented(present, w, h);
@@ -78,7 +78,7 @@ bool SelfCheckSession::service_camera(double now) {
   bool status_due = false;
   const bool lost = camera_->state() != hal::CameraState::streaming;
   if (lost != camera_lost_) {
-    if (lost) status_.report("camera: " + camera_->last_error());
+    if (lost) status_.report(ErrorKind::device, "camera: " + camera_->last_error());
     camera_lost_ = lost;
     status_due = true;
   }
@@ -94,11 +94,11 @@ bool SelfCheckSession::verdict(double now) {
   if (camera_->read_frame(capture_)) {
     const hal::SelfCheckResult result = checker_.check(image_, layout_, capture_);
     last_ = hal::CheckSummary{result.passed, result.score, result.reason, clock_.now()};
-    if (!result.passed) status_.report("self-check failed: " + result.reason);
+    if (!result.passed) status_.report(ErrorKind::self_check, "self-check failed: " + result.reason);
     checking_ = false;
   } else if (now - started_ > kCheckTimeout) {
     last_ = hal::CheckSummary{false, 0.0, "no camera frame within 3 s", clock_.now()};
-    status_.report("self-check failed: no camera frame within 3 s");
+    status_.report(ErrorKind::self_check, "self-check failed: no camera frame within 3 s");
     checking_ = false;
   }
   if (checking_) return false;

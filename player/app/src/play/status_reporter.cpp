@@ -1,5 +1,8 @@
 #include "play/status_reporter.h"
 
+#include "base/cache_file.h"
+#include "play/play_clock.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -40,7 +43,8 @@ StatusReporter::StatusReporter(hal::Status& board, KioskState& kiosk, const Play
       status_led_(board.find_led("status")),
       error_led_(board.find_led("error")) {}
 
-void StatusReporter::report(const std::string& error) {
+void StatusReporter::report(ErrorKind kind, const std::string& error) {
+  ++metrics_.errors[static_cast<std::size_t>(kind)];
   err_ << "warning: " << error << "\n";
   kiosk_.error_reported(clock_.now());
   if (std::find(errors_.begin(), errors_.end(), error) != errors_.end()) return;
@@ -69,7 +73,15 @@ void StatusReporter::set_leds(bool lasting_warning) {
   if (error_led_ && board_.pattern(*error_led_) != plan.error) board_.set_pattern(*error_led_, plan.error);
 }
 
-void StatusReporter::publish(hal::StatusReport report) {
+void StatusReporter::open_metrics(const std::string& path, const Metrics& base) {
+  metrics_path_ = path;
+  metrics_.version = base.version;
+  metrics_.platform = base.platform;
+  metrics_.renderer = base.renderer;
+  metrics_.start_unix_s = base.start_unix_s;
+}
+
+void StatusReporter::publish(hal::StatusReport report, int item) {
   // Every warning in the file is one that lasts, so the LEDs warn exactly when the file lists one.
   set_leds(!report.warnings.empty());
   report.state = std::string(kiosk_.name());
@@ -81,6 +93,27 @@ void StatusReporter::publish(hal::StatusReport report) {
   if (!board_.write_report(report, &error) && error != last_status_error_) {
     last_status_error_ = error;
     err_ << "warning: " << error << "\n";
+  }
+  if (metrics_path_.empty()) return;
+  metrics_.state = kiosk_.name();
+  metrics_.item = item;
+  metrics_.scene = report.item;
+  metrics_.frames = report.frames;
+  metrics_.frame_seconds_p50 = report.frame_ms_p50 / 1000.0;
+  metrics_.frame_seconds_p99 = report.frame_ms_p99 / 1000.0;
+  metrics_.display_connected = kiosk_.state() != KioskState::State::no_display;
+  metrics_.resident_bytes = static_cast<std::uint64_t>(resident_kib()) * 1024u;
+  if (report.self_check) {
+    // The verdict's time is on the devices' clock; its age on that clock dates it in Unix time.
+    const double age_s = std::chrono::duration<double>(clock_.devices().now() - report.self_check->time).count();
+    metrics_.self_check = Metrics::Check{report.self_check->passed, report.self_check->score, wall_seconds() - age_s};
+  }
+  // Written whole beside and renamed over, as node_exporter's textfile collector asks.
+  if (!base::write_file_whole(metrics_path_, format_metrics(metrics_), error)) {
+    if (error != last_metrics_error_) err_ << "warning: metrics: " << error << "\n";
+    last_metrics_error_ = error;
+  } else {
+    last_metrics_error_.clear();
   }
 }
 
@@ -111,7 +144,11 @@ void StatusReporter::frame_presented(const FrameLogLine& line) {
   }
   pending_actions_.clear();
   const double frame_s = clock_.now();
-  if (last_frame_s_ >= 0.0) stats_.add((frame_s - last_frame_s_) * 1000.0);
+  if (last_frame_s_ >= 0.0) {
+    stats_.add((frame_s - last_frame_s_) * 1000.0);
+    metrics_.frame_seconds_sum += frame_s - last_frame_s_;
+    ++metrics_.frame_intervals;
+  }
   last_frame_s_ = frame_s;
 }
 

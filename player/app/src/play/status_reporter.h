@@ -5,6 +5,7 @@
 #include "hal/board.h"
 #include "hal/status.h"
 #include "play/kiosk_state.h"
+#include "play/metrics_file.h"
 #include "play/play_clock.h"
 #include "service_notify.h"
 
@@ -46,7 +47,7 @@ class StatusReporter {
 
   // An error: "warning: ..." on stderr, kept in the status file's errors (the recent 16, each once),
   // and the error LED's warning for a minute.
-  void report(const std::string& error);
+  void report(ErrorKind kind, const std::string& error);
   const std::vector<std::string>& errors() const { return errors_; }
   // Not an error, but worth a line: "note: ..." on stderr, the first time it is noted (an item that
   // comes round again does not repeat it).
@@ -60,7 +61,14 @@ class StatusReporter {
   void set_leds(bool lasting_warning);
   // The LEDs, then the status file: `report` comes with item, frames, warnings and the self-check
   // filled in; the state, frame times and errors are added here.
-  void publish(hal::StatusReport report);
+  // `item`: the playlist's index of the item on screen (-1: none), for the metrics.
+  void publish(hal::StatusReport report, int item = -1);
+
+  // --metrics (or the board's metrics_file): written beside the status file at each publish().
+  // `base`: the figures that do not change while the player runs (version, platform, renderer, start).
+  void open_metrics(const std::string& path, const Metrics& base);
+  void gpu_reset_survived(std::uint64_t resets) { metrics_.gpu_resets = resets; }
+  void scene_loaded(double seconds) { metrics_.scene_load_seconds = seconds; }
 
   // --log: the file (appended to when a session plays on after a GPU reset).
   void open_log(const std::string& path, bool append);
@@ -89,6 +97,8 @@ class StatusReporter {
   double last_frame_s_ = -1.0;
   std::ofstream log_;
   std::string pending_actions_;
+  std::string metrics_path_, last_metrics_error_;
+  Metrics metrics_;
   PlayClock::Steady::time_point last_log_ = PlayClock::Steady::now();
 };
 

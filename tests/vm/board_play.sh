@@ -5,7 +5,8 @@
 # GPIO22 check, GPIO23 status LED, GPIO24 error LED), vivid behind the board's by-id name, a uinput
 # keyboard, vkms. Pulling a button's line acts in the player; the LED lines, read back through
 # gpio-sim, show the patterns; a key acts as its button; the camera unbound mid-stream is reported
-# and reopened after rebind while playback never stops; SIGTERM stops it cleanly.
+# and reopened after rebind while playback never stops; `player ctl` reaches it through the board's
+# control socket and its metrics file says kms and a display; SIGTERM stops it cleanly.
 #
 #   board_play.sh PLAYER SOURCE_DIR OUT_DIR
 set -euo pipefail
@@ -124,6 +125,17 @@ at=$(last_frame)
 click "$play"  # play acts on the release of a short press (it has a long press)
 wait_log "$at" " item=1 state=playing .*actions=pause " 30
 
+echo "== player ctl on the board's control socket, and its metrics file"
+[ -S /run/ssao-player/control ] || fail "the board's control socket /run/ssao-player/control is missing"
+at=$(last_frame)
+reply=$("$player" ctl item 0 2>&1) || fail "player ctl item 0 failed: $reply"
+[ "$reply" = "ok: item 0" ] || fail "player ctl item 0 replied '$reply'"
+wait_log "$at" " item=0 .*actions=item:0 " 30
+grep -qx 'ssao_player_display_connected 1' /run/ssao-player/ssao-player.prom ||
+  fail "the metrics file does not say a display is connected: $(cat /run/ssao-player/ssao-player.prom)"
+grep -q '^ssao_player_info{version="[0-9.]*",platform="kms",' /run/ssao-player/ssao-player.prom ||
+  fail "the metrics file's info does not name kms"
+
 echo "== the camera unbound mid-stream"
 wait_log -1 " camera=ok " 30
 device=$(basename "$(readlink -f /sys/class/video4linux/$(basename "$vivid")/device)")
@@ -145,5 +157,6 @@ wait "$pid" || fail "the player exited with $? on SIGTERM"
 pid=
 grep -q "^played [0-9]* frames" "$out/board.out" || fail "no clean stop"
 grep -q '"state": "playing"' /run/ssao-player/status.json || fail "the status file's last state is not playing"
+[ -e /run/ssao-player/control ] && fail "the control socket outlived the player"
 echo 0 >"$sim/live"
 echo PASS

@@ -132,6 +132,19 @@ TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
   EXPECT_EQ(pl.items.at(0).background, glm::vec3(0.0f, 0.5f, 1.0f));
 }
 
+// "#rrggbb" as web colours are written: each pair its own channel, either case.
+TEST(Playlist, AHexColourSetsEachOfItsThreeChannels) {
+  for (const auto& [text, want] : {std::pair{"#1a2b3c", glm::vec3(0x1a, 0x2b, 0x3c) / 255.0f},
+                                   std::pair{"#FFFEFD", glm::vec3(255, 254, 253) / 255.0f}}) {
+    Playlist pl;
+    std::string error;
+    ASSERT_TRUE(parse_playlist(std::string("[[item]]\nscene = \"a.glb\"\nbackground = \"") + text + "\"\n", list, options(), pl,
+                               error))
+        << error;
+    EXPECT_EQ(pl.items.at(0).background, want) << text;
+  }
+}
+
 // The camera's ranges are taken to their ends: elevation [-89, 89] closed, fov (1, 170) open, and a
 // turntable period may be any positive time (a turn in half a second).
 TEST(Playlist, CameraValuesAtTheEndsOfTheirRangesAreTaken) {

@@ -134,12 +134,12 @@ TEST(Playlist, BackgroundTakesBothEndsOfItsRange) {
 
 // "#rrggbb" as web colours are written: each pair its own channel, either case.
 TEST(Playlist, AHexColourSetsEachOfItsThreeChannels) {
-  for (const auto& [text, want] : {std::pair{"#1a2b3c", glm::vec3(0x1a, 0x2b, 0x3c) / 255.0f},
-                                   std::pair{"#FFFEFD", glm::vec3(255, 254, 253) / 255.0f}}) {
+  for (const auto& [text, want] :
+       {std::pair{"#1a2b3c", glm::vec3(0x1a, 0x2b, 0x3c) / 255.0f}, std::pair{"#FFFEFD", glm::vec3(255, 254, 253) / 255.0f}}) {
     Playlist pl;
     std::string error;
-    ASSERT_TRUE(parse_playlist(std::string("[[item]]\nscene = \"a.glb\"\nbackground = \"") + text + "\"\n", list, options(), pl,
-                               error))
+    ASSERT_TRUE(
+        parse_playlist(std::string("[[item]]\nscene = \"a.glb\"\nbackground = \"") + text + "\"\n", list, options(), pl, error))
         << error;
     EXPECT_EQ(pl.items.at(0).background, want) << text;
   }

@@ -859,3 +859,22 @@ TEST(Timeline, AStallThatEndsOnABoundaryLandsBesideItWhateverTheRounding) {
     EXPECT_TRUE(std::abs(in_pass - expected) < 1e-6 || (third == 0 && std::abs(in_pass - 0.3) < 1e-6)) << in_pass;
   }
 }
+
+// One item on a wallclock schedule: each cycle plays it anew (a cut, the next sequence), also where
+// the cycle count's division lands a hair below a whole number (at this wall time, 127499973.99999999
+// for the 127499974th cycle).
+TEST(Timeline, AOneItemWallclockPlaylistStartsItsItemAnewEachCycle) {
+  Playlist pl = make({13.345});
+  pl.schedule = Schedule::wallclock;
+  const double wall = 1701487146.6378841;
+  Timeline tl(pl, t0, wall);
+  const Cue first = tl.at(t0, wall);
+  const Cue same = tl.at(t0 + 1.0, wall + 1.0);
+  EXPECT_FALSE(same.cut);
+  EXPECT_EQ(same.sequence, first.sequence);
+  const Cue next = tl.at(t0 + 13.345, wall + 13.345);
+  EXPECT_EQ(next.item, 0);
+  EXPECT_NEAR(next.item_time, first.item_time, 1e-6);
+  EXPECT_TRUE(next.cut);
+  EXPECT_EQ(next.sequence, first.sequence + 1);
+}

@@ -9,8 +9,8 @@ namespace app {
 namespace {
 
 constexpr base::Name<ErrorKind> kErrorKindNames[] = {
-    {ErrorKind::content, "content"},       {ErrorKind::display, "display"}, {ErrorKind::gpu, "gpu"},
-    {ErrorKind::device, "device"},         {ErrorKind::self_check, "self_check"}, {ErrorKind::service, "service"},
+    {ErrorKind::content, "content"}, {ErrorKind::display, "display"},       {ErrorKind::gpu, "gpu"},
+    {ErrorKind::device, "device"},   {ErrorKind::self_check, "self_check"}, {ErrorKind::service, "service"},
     {ErrorKind::control, "control"},
 };
 static_assert(base::in_enum_order(kErrorKindNames));
@@ -52,14 +52,15 @@ void sample(std::string& out, std::string_view name, std::string_view labels, do
 
 }  // namespace
 
-std::string_view name(ErrorKind kind) { return base::name_of(kErrorKindNames, kind); }
+std::string_view name(ErrorKind kind) {
+  return base::name_of(kErrorKindNames, kind);
+}
 
 std::string format_metrics(const Metrics& m) {
   std::string out;
   family(out, "ssao_player_info", "gauge", "The player's version, platform and GL renderer; always 1.");
   sample(out, "ssao_player_info",
-         "version=\"" + label(m.version) + "\",platform=\"" + label(m.platform) + "\",renderer=\"" + label(m.renderer) + "\"",
-         1);
+         "version=\"" + label(m.version) + "\",platform=\"" + label(m.platform) + "\",renderer=\"" + label(m.renderer) + "\"", 1);
   family(out, "ssao_player_start_time_seconds", "gauge", "When the player started, in seconds since the Unix epoch.");
   sample(out, "ssao_player_start_time_seconds", "", m.start_unix_s);
   family(out, "ssao_player_state", "gauge", "The player's state: 1 for the one it is in, 0 for the others.");

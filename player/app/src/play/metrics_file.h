@@ -32,7 +32,7 @@ struct Metrics {
     double score = 0.0;
     double unix_s = 0.0;
   };
-  std::optional<Check> self_check;  // none before the first one
+  std::optional<Check> self_check;           // none before the first one
   std::optional<double> scene_load_seconds;  // the last scene loaded, from request to ready
   std::uint64_t resident_bytes = 0;
   bool display_connected = false;

@@ -36,9 +36,15 @@ reply=$(ctl item 3 2>&1)
 
 reply=$(ctl jump 2>&1)
 [ $? -eq 2 ] || fail "an unknown command did not exit 2"
-grep -q "^error: unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N)$" \
+grep -q "^error: unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)$" \
   <<<"$reply" || fail "an unknown command said '$reply'"
 grep -q "jump" "$dir/stdout" && fail "an unknown command reached the player"
+
+# A screenshot: the next frame drawn, written beside the socket, the reply given once it is.
+reply=$(ctl screenshot) || fail "screenshot failed: $reply"
+grep -qx "ok: frame [0-9]* written to $dir/screenshot.png" <<<"$reply" || fail "screenshot replied '$reply'"
+[ "$(head -c 8 "$dir/screenshot.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "the screenshot is not a PNG"
+[ "$(od -An -tu1 -j16 -N8 "$dir/screenshot.png" | tr -s ' ')" = " 0 0 0 64 0 0 0 48" ] || fail "the screenshot is not 64x48"
 
 [ "$(ctl next)" = "ok: next" ] || fail "next"
 wait_for "item=0 .*actions=next" 10 "$dir/log" || fail "next after the last item did not show item 0"

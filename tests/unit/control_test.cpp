@@ -25,7 +25,8 @@ using control::Verb;
 namespace {
 
 TEST(ControlCommand, EachVerbReadsAndWritesBack) {
-  for (const char* text : {"next", "previous", "pause", "resume", "check", "reload", "restart", "item 0", "item 12"}) {
+  for (const char* text :
+       {"next", "previous", "pause", "resume", "check", "reload", "restart", "item 0", "item 12", "screenshot"}) {
     Command command;
     std::string error;
     ASSERT_TRUE(control::parse_command(text, command, error)) << text << ": " << error;
@@ -42,18 +43,22 @@ TEST(ControlCommand, AMalformedCommandSaysWhatWasExpected) {
   const struct {
     std::string text, error;
   } cases[] = {
-      {"", "unknown command '' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
-      {"jump", "unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
-      {"Next", "unknown command 'Next' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
+      {"", "unknown command '' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+      {"jump",
+       "unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+      {"Next",
+       "unknown command 'Next' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
       {"next ", "next: takes no argument, got ''"},
       {"pause now", "pause: takes no argument, got 'now'"},
       {"item", "item: expected an item number from 0 (as the status file counts), got ''"},
       {"item -1", "item: expected an item number from 0 (as the status file counts), got '-1'"},
       {"item 2x", "item: expected an item number from 0 (as the status file counts), got '2x'"},
       {"item 1000001", "item: expected an item number from 0 (as the status file counts), got '1000001'"},
-      {"next\n\n", "unknown command 'next\\x0a' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
+      {"next\n\n",
+       "unknown command 'next\\x0a' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
       {"a\x01'b\\",
-       "unknown command 'a\\x01\\x27b\\x5c' (expected one of next, previous, pause, resume, check, reload, restart, item N)"},
+       "unknown command 'a\\x01\\x27b\\x5c' (expected one of next, previous, pause, resume, check, reload, restart, item N, "
+       "screenshot)"},
   };
   for (const auto& c : cases) {
     Command command;
@@ -74,7 +79,7 @@ TEST(ControlCommand, LongTextIsShownCut) {
   std::string error;
   EXPECT_FALSE(control::parse_command(std::string(100, 'z'), command, error));
   EXPECT_EQ(error, "unknown command '" + std::string(64, 'z') +
-                       "'... (expected one of next, previous, pause, resume, check, reload, restart, item N)");
+                       "'... (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)");
 }
 
 TEST(ControlCommand, AReplyIsOkOnlyWhenItSaysSo) {
@@ -178,6 +183,43 @@ TEST_F(ControlServer, TheClientSendsAndReadsTheReply) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
+// A screenshot waits for the next frame: its reply is put off, then given, or an error after a while.
+TEST_F(ControlServer, AReplyPutOffIsGivenLaterOrTimesOut) {
+  control::Server server;
+  std::string error;
+  control::Server::Limits limits;
+  limits.reply_wait_s = 10.0;
+  ASSERT_TRUE(server.open(path_, limits, error)) << error;
+  const auto later = [&](double now) {
+    server.serve(
+        now, [&](const Command& c, const control::Server::Peer&) { return c.verb == Verb::screenshot ? std::string() : "ok"; },
+        [&](const std::string& line) { log_.push_back(line); });
+  };
+  int first = connect_and_send(path_, "screenshot");
+  const int other = connect_and_send(path_, "next");
+  later(0.0);
+  EXPECT_EQ(reply_of(other), "ok") << "the other commands are answered at once";
+  EXPECT_TRUE(server.answers_pending());
+  std::vector<int> fds;
+  server.fds(fds);
+  EXPECT_EQ(fds.size(), 1u) << "a connection waiting for its reply is not polled";
+  pollfd wait{first, POLLIN, 0};
+  EXPECT_EQ(poll(&wait, 1, 0), 0) << "no reply before the frame";
+  server.answer_later("ok: frame 7 written to /x/screenshot.png");
+  EXPECT_EQ(reply_of(first), "ok: frame 7 written to /x/screenshot.png");
+  EXPECT_FALSE(server.answers_pending());
+
+  first = connect_and_send(path_, "screenshot");
+  later(20.0);
+  later(29.0);
+  wait = {first, POLLIN, 0};
+  EXPECT_EQ(poll(&wait, 1, 0), 0) << "within the 10 s, still waiting";
+  later(30.5);
+  EXPECT_EQ(reply_of(first), "error: not done within 10 s (no frame was drawn)");
+  ASSERT_EQ(log_.size(), 1u);
+  EXPECT_NE(log_[0].find("was not done within 10 s"), std::string::npos) << log_[0];
+}
+
 TEST_F(ControlServer, MalformedAndOversizedCommandsAreRefusedAndLogged) {
   control::Server server;
   std::string error;
@@ -187,7 +229,7 @@ TEST_F(ControlServer, MalformedAndOversizedCommandsAreRefusedAndLogged) {
   serve(server);
   EXPECT_EQ(reply_of(bad),
             "error: unknown command 'format c:' (expected one of next, previous, pause, resume, check, reload, restart, "
-            "item N)");
+            "item N, screenshot)");
   EXPECT_EQ(reply_of(big), "error: a command of 1004 bytes, more than 256");
   EXPECT_TRUE(handled_.empty());
   ASSERT_EQ(log_.size(), 2u);

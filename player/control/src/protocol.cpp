@@ -8,8 +8,9 @@ namespace control {
 namespace {
 
 constexpr base::Name<Verb> kVerbs[] = {
-    {Verb::next, "next"},   {Verb::previous, "previous"}, {Verb::pause, "pause"},     {Verb::resume, "resume"},
-    {Verb::check, "check"}, {Verb::reload, "reload"},     {Verb::restart, "restart"}, {Verb::item, "item"},
+    {Verb::next, "next"},       {Verb::previous, "previous"}, {Verb::pause, "pause"},
+    {Verb::resume, "resume"},   {Verb::check, "check"},       {Verb::reload, "reload"},
+    {Verb::restart, "restart"}, {Verb::item, "item"},         {Verb::screenshot, "screenshot"},
 };
 static_assert(base::in_enum_order(kVerbs));
 
@@ -39,7 +40,8 @@ std::string_view to_string(Verb verb) {
 
 std::string verbs_text() {
   std::vector<std::string> names = base::names_of(kVerbs);
-  names.back() += " N";
+  for (std::string& name : names)
+    if (name == "item") name += " N";
   return base::join_names(names);
 }
 

@@ -161,9 +161,22 @@ void Server::accept_all(double now_s, const std::function<void(const std::string
   }
 }
 
+void Server::answer_later(std::string_view reply) {
+  for (const Waiting& w : later_) send_reply(w.fd.get(), reply);
+  later_.clear();
+}
+
 void Server::serve(double now_s, const std::function<std::string(const Command&, const Peer&)>& handle,
                    const std::function<void(const std::string&)>& log) {
   if (!listener_) return;
+  std::erase_if(later_, [&](const Waiting& w) {
+    if (now_s - w.since_s <= limits_.reply_wait_s) return false;
+    send_reply(w.fd.get(),
+               "error: not done within " + std::to_string(static_cast<int>(limits_.reply_wait_s)) + " s (no frame was drawn)");
+    log("control: a command from " + describe(w.peer) + " was not done within " +
+        std::to_string(static_cast<int>(limits_.reply_wait_s)) + " s");
+    return true;
+  });
   accept_all(now_s, log);
   for (auto it = waiting_.begin(); it != waiting_.end();) {
     // MSG_TRUNC: the length of the whole message, so one too long is told apart from one that fits.
@@ -197,7 +210,13 @@ void Server::serve(double now_s, const std::function<std::string(const Command&,
         send_reply(it->fd.get(), "error: " + error);
         log("control: refused a command from " + describe(it->peer) + ": " + error);
       } else {
-        send_reply(it->fd.get(), handle(command, it->peer));
+        const std::string reply = handle(command, it->peer);
+        if (reply.empty() && later_.size() < kMaxWaiting) {
+          it->since_s = now_s;
+          later_.push_back(std::move(*it));
+        } else {
+          send_reply(it->fd.get(), reply.empty() ? "error: busy: too many replies wait already" : reply);
+        }
       }
     }
     // Answered, closed by the client, or failed: done with either way.

@@ -240,6 +240,9 @@ std::string PlayLoop::command(const control::Command& command, double now) {
       p_.status.note_action("item:" + std::to_string(command.item));
       return "ok: item " + std::to_string(command.item);
     }
+    case Verb::screenshot:
+      screenshot_wanted_ = true;
+      return {};  // answered once the next frame is drawn (show_frame)
   }
   return "error: unknown command";
 }
@@ -349,6 +352,15 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
     }
   }
   p_.drawer.finish();
+  if (screenshot_wanted_) {
+    // Read back on request only: it waits for the GPU, which no ordinary frame does.
+    screenshot_wanted_ = false;
+    const std::string path = (fs::path(p_.control.path()).parent_path() / "screenshot.png").string();
+    const bool written = p_.drawer.write_surface(path, error);
+    p_.status.note_action("screenshot");
+    p_.control.answer_later(written ? "ok: frame " + std::to_string(frame_) + " written to " + path : "error: " + error);
+    error.clear();
+  }
   // The last frame as the GPU drew it onto the surface, before it goes to the display.
   if (!p_.options.snapshot.empty() && frame_ + 1 == p_.options.frames && !p_.drawer.write_surface(p_.options.snapshot, error)) {
     p_.err << "error: --snapshot: " << error << "\n";

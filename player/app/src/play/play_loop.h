@@ -92,6 +92,7 @@ class PlayLoop {
   std::vector<ContentWatch::Change> changes_;
   std::vector<hal::Action> actions_;
   std::vector<int> control_fds_;
+  bool screenshot_wanted_ = false;  // `player ctl screenshot`: the next frame drawn, written beside the socket
   long long frame_;
   int last_item_ = -1;
   double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown

@@ -18,7 +18,7 @@ inline constexpr std::string_view kDefaultPath = "/run/ssao-player/control";
 // Members of this group may command a player besides root and the player's own user.
 inline constexpr std::string_view kControlGroup = "ssao-player-control";
 
-enum class Verb : std::uint8_t { next, previous, pause, resume, check, reload, restart, item };
+enum class Verb : std::uint8_t { next, previous, pause, resume, check, reload, restart, item, screenshot };
 
 struct Command {
   Verb verb = Verb::next;

@@ -21,6 +21,7 @@ class Server {
     int burst = 10;               // commands at once
     int per_second = 2;           // and then this many a second
     double message_wait_s = 2.0;  // a connection that sends nothing in this time is closed
+    double reply_wait_s = 10.0;   // a reply put off (see serve) and not given in this time: an error
   };
   static constexpr std::size_t kMaxWaiting = 8;  // connections beyond these are refused at once
 
@@ -44,12 +45,16 @@ class Server {
     pid_t pid = 0;
     uid_t uid = 0;
   };
-  // Runs every pending command: `handle` does it and returns the reply ("ok..." or "error: ...").
+  // Runs every pending command: `handle` does it and returns the reply ("ok..." or "error: ..."), or
+  // an empty text to reply later with answer_later() (a screenshot waits for the next frame).
   // Refusals (a peer not allowed, a malformed or oversized message, a burst past the rate) are
   // replied to here and given to `log`, one line each, without reaching `handle`. `now_s`: a
   // monotonic clock in seconds.
   void serve(double now_s, const std::function<std::string(const Command&, const Peer&)>& handle,
              const std::function<void(const std::string&)>& log);
+  // Replies to every command whose reply was put off, and closes their connections.
+  void answer_later(std::string_view reply);
+  bool answers_pending() const { return !later_.empty(); }
 
  private:
   struct Waiting {
@@ -70,6 +75,7 @@ class Server {
   gid_t control_gid_ = 0;
   bool has_control_group_ = false;
   std::vector<Waiting> waiting_;
+  std::vector<Waiting> later_;  // answered by answer_later(); not polled (a closed client reads as ready)
   double tokens_ = 0.0, tokens_at_s_ = 0.0;
   bool tokens_started_ = false;
   std::array<char, kMaxMessage + 1> buffer_{};

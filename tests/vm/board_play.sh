@@ -131,6 +131,9 @@ at=$(last_frame)
 reply=$("$player" ctl item 0 2>&1) || fail "player ctl item 0 failed: $reply"
 [ "$reply" = "ok: item 0" ] || fail "player ctl item 0 replied '$reply'"
 wait_log "$at" " item=0 .*actions=item:0 " 30
+reply=$("$player" ctl screenshot --timeout 60 2>&1) || fail "player ctl screenshot failed: $reply"
+[ "$reply" = "${reply#ok: frame }" ] && fail "player ctl screenshot replied '$reply'"
+[ -s /run/ssao-player/screenshot.png ] || fail "no screenshot beside the control socket"
 grep -qx 'ssao_player_display_connected 1' /run/ssao-player/ssao-player.prom ||
   fail "the metrics file does not say a display is connected: $(cat /run/ssao-player/ssao-player.prom)"
 grep -q '^ssao_player_info{version="[0-9.]*",platform="kms",' /run/ssao-player/ssao-player.prom ||

@@ -21,7 +21,7 @@ class Server {
     int burst = 10;               // commands at once
     int per_second = 2;           // and then this many a second
     double message_wait_s = 2.0;  // a connection that sends nothing in this time is closed
-    double reply_wait_s = 10.0;   // a reply put off (see serve) and not given in this time: an error
+    double reply_wait_s = 30.0;   // a reply put off (see serve) and not given in this time: an error
   };
   static constexpr std::size_t kMaxWaiting = 8;  // connections beyond these are refused at once
 

@@ -1,6 +1,7 @@
 #include "base/errno_text.h"
 #include "base/unique_fd.h"
 #include "control/control.h"
+#include "socket_address.h"
 
 #include <poll.h>
 #include <sys/socket.h>
@@ -9,7 +10,6 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 
 namespace control {
 namespace {
@@ -25,14 +25,8 @@ int left_ms(Clock::time_point deadline) {
 
 bool send_command(const std::string& path, std::string_view message, int timeout_ms, std::string& reply, std::string& error) {
   const Clock::time_point deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
-  sockaddr_un address{};
-  address.sun_family = AF_UNIX;
-  if (path.empty() || path.size() >= sizeof address.sun_path) {
-    error = "the control socket's path '" + path + "' is empty or longer than " + std::to_string(sizeof address.sun_path - 1) +
-            " bytes";
-    return false;
-  }
-  std::memcpy(address.sun_path, path.data(), path.size());
+  sockaddr_un address;
+  if (!socket_address(path, address, error)) return false;
   base::UniqueFd fd(socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0));
   if (!fd) {
     error = "no socket (" + base::errno_text(errno) + ")";

@@ -1,6 +1,7 @@
 #include "control/server.h"
 
 #include "base/errno_text.h"
+#include "socket_address.h"
 
 #include <grp.h>
 #include <sys/socket.h>
@@ -10,22 +11,9 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstring>
 
 namespace control {
 namespace {
-
-bool address_of(const std::string& path, sockaddr_un& address, std::string& error) {
-  address = {};
-  address.sun_family = AF_UNIX;
-  if (path.empty() || path.size() >= sizeof address.sun_path) {
-    error = "control: the socket's path '" + path + "' is empty or longer than " + std::to_string(sizeof address.sun_path - 1) +
-            " bytes";
-    return false;
-  }
-  std::memcpy(address.sun_path, path.data(), path.size());
-  return true;
-}
 
 // Whether a player (this one before a restart, or another) still listens at `address`.
 bool someone_listens(const sockaddr_un& address) {
@@ -58,7 +46,10 @@ Server::~Server() {
 
 bool Server::open(const std::string& path, const Limits& limits, std::string& error) {
   sockaddr_un address;
-  if (!address_of(path, address, error)) return false;
+  if (!socket_address(path, address, error)) {
+    error = "control: " + error;
+    return false;
+  }
   struct stat st {};
   if (lstat(path.c_str(), &st) == 0) {
     if (!S_ISSOCK(st.st_mode)) {

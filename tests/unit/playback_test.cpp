@@ -90,13 +90,15 @@ TEST(Playlist, TheScenesOwnCameraByIndex) {
   const Playlist pl = parse_ok(
       "[[item]]\nscene = \"a.glb\"\ncamera = { motion = \"file\", index = 2 }\n"
       "[[item]]\nscene = \"b.glb\"\ncamera = { motion = \"file\" }\n"
-      "[[item]]\nscene = \"c.glb\"\ncamera = { motion = \"file\", index = 0 }\n");
+      "[[item]]\nscene = \"c.glb\"\ncamera = { motion = \"file\", index = 0 }\n"
+      "[[item]]\nscene = \"d.glb\"\ncamera = { motion = \"file\", index = 1000000 }\n");
   EXPECT_EQ(pl.items.at(0).camera.motion, Motion::file);
   EXPECT_EQ(pl.items[0].camera.index, 2);
   EXPECT_EQ(camera_at(pl.items[0].camera, 3.0).file_index, 2);
   EXPECT_EQ(pl.items.at(1).camera.index, 0);  // the first camera when none is named
   EXPECT_EQ(camera_at(pl.items[1].camera, 0.0).file_index, 0);
   EXPECT_EQ(pl.items.at(2).camera.index, 0);
+  EXPECT_EQ(pl.items.at(3).camera.index, 1000000) << "the largest index taken";
   CameraPath turntable;
   EXPECT_EQ(camera_at(turntable, 1.0).file_index, -1);
 }
@@ -253,14 +255,16 @@ TEST(Playlist, AnimationKeys) {
       "[[item]]\nscene = \"a.glb\"\n"
       "[[item]]\nscene = \"a.glb\"\nanimation = \"Walk\"\nanimation_speed = 0.5\n"
       "[[item]]\nscene = \"a.glb\"\nanimation = 2\n"
-      "[[item]]\nscene = \"a.glb\"\nanimation = \"none\"\n");
-  ASSERT_EQ(pl.items.size(), 4u);
+      "[[item]]\nscene = \"a.glb\"\nanimation = \"none\"\n"
+      "[[item]]\nscene = \"a.glb\"\nanimation = 0\n");
+  ASSERT_EQ(pl.items.size(), 5u);
   EXPECT_EQ(pl.items[0].animation, "all");  // the default: every animation, as authored
   EXPECT_EQ(pl.items[0].animation_speed, 1.0);
   EXPECT_EQ(pl.items[1].animation, "Walk");
   EXPECT_EQ(pl.items[1].animation_speed, 0.5);
   EXPECT_EQ(pl.items[2].animation, "2");
   EXPECT_EQ(pl.items[3].animation, "none");
+  EXPECT_EQ(pl.items[4].animation, "0") << "the first animation, by index";
 }
 
 TEST(Playlist, FailureLeavesOutputUnchanged) {
@@ -419,6 +423,8 @@ const ErrorCase error_cases[] = {
      "3:37: item[0].camera.index: expected a camera index of the scene, 0 or more, got -1"},
     {"IndexFraction", ITEM "camera = { motion = \"file\", index = 1.5 }\n",
      "3:37: item[0].camera.index: expected a camera index of the scene, 0 or more, got 1.5"},
+    {"IndexBeyondAMillion", ITEM "camera = { motion = \"file\", index = 1000001 }\n",
+     "3:37: item[0].camera.index: expected a camera index of the scene, 0 or more, got 1000001"},
     // Render settings.
     {"AoNotTable", ITEM "ao = 3\n", "3:6: item[0].ao: expected a table of render settings, got an integer"},
     {"AoUnknownKey", ITEM "ao = { estimator = \"horizon\", bogus = 1 }\n",

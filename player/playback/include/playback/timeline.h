@@ -142,7 +142,7 @@ class Timeline {
   // Wallclock: the slot shown at the last evaluation.
   bool wall_valid_ = false;
   double wall_cycle_{}, wall_mono_{};
-  int wall_slot_{}, wall_item_ = -1, wall_next_{};
+  int wall_slot_{}, wall_item_{}, wall_next_{};
   double wall_item_time_ = 0;
 
   std::uint64_t sequence_ = 0;

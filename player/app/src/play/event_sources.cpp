@@ -133,6 +133,12 @@ void PollSet::wait(std::initializer_list<int> fds, const std::vector<int>& more,
   poll(fds_.data(), fds_.size(), timeout_ms);
 }
 
+bool PollSet::readable(int fd) const {
+  for (const pollfd& p : fds_)
+    if (p.fd == fd) return p.revents != 0;
+  return false;
+}
+
 void PollSet::wait_one(int fd, int timeout_ms) {
   pollfd wake{fd, POLLIN, 0};
   poll(&wake, 1, timeout_ms);

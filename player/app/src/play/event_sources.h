@@ -84,6 +84,8 @@ class PollSet {
  public:
   // Waits until one of `fds` or `more` is readable or `timeout_ms` passes; negative fds are left out.
   void wait(std::initializer_list<int> fds, const std::vector<int>& more, int timeout_ms);
+  // Whether the last wait() found `fd` readable (or hung up, or in error).
+  bool readable(int fd) const;
   // Waits for one fd alone.
   static void wait_one(int fd, int timeout_ms);
 

@@ -158,10 +158,7 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
 
 PlayLoop::Next PlayLoop::drain_events(bool& closed) {
   const SignalSource::Received signals = p_.signals.drain();
-  for (int i = 0; i < signals.reloads; ++i) {  // SIGHUP: everything again
-    if (!playlist_path_.empty()) p_.loader.load_playlist(playlist_path_);
-    p_.scenes.reload_all();
-  }
+  for (int i = 0; i < signals.reloads; ++i) reload_everything();  // SIGHUP
   if (signals.check) p_.check.request();
   if (signals.stop) return Next::stop;
   drain_content();
@@ -227,8 +224,7 @@ std::string PlayLoop::command(const control::Command& command, double now) {
       return "ok: playing";
     case Verb::reload:
       p_.status.note_action("reload");
-      if (!playlist_path_.empty()) p_.loader.load_playlist(playlist_path_);
-      p_.scenes.reload_all();
+      reload_everything();
       return playlist_path_.empty() ? "ok: reloading every scene" : "ok: reloading the playlist and every scene";
     case Verb::item: {
       const auto count = static_cast<int>(timeline_->playlist().items.size());
@@ -247,7 +243,16 @@ std::string PlayLoop::command(const control::Command& command, double now) {
   return "error: unknown command";
 }
 
+void PlayLoop::reload_everything() {
+  if (!playlist_path_.empty()) p_.loader.load_playlist(playlist_path_);
+  p_.scenes.reload_all();
+}
+
 void PlayLoop::serve_control(double now) {
+  // Only when a connection came or one is still to be answered: no system call in an idle frame.
+  if (!p_.control.has_connections() &&
+      std::none_of(control_fds_.begin(), control_fds_.end(), [&](int fd) { return poll_.readable(fd); }))
+    return;
   p_.control.serve(
       p_.clock.real_seconds(),
       [&](const control::Command& c, const control::Server::Peer& peer) {

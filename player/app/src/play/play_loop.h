@@ -72,6 +72,8 @@ class PlayLoop {
   void read_buttons(double now);
   void act(hal::Action action, double now);
   void serve_control(double now);
+  // The playlist (when there is a file) and every scene, loaded again: SIGHUP and `player ctl reload`.
+  void reload_everything();
   std::string command(const control::Command& command, double now);
   // Asks for the cue's scenes and makes this frame's share of the uploads.
   void load_for(const playback::Cue& cue);

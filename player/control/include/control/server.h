@@ -55,6 +55,8 @@ class Server {
   // Replies to every command whose reply was put off, and closes their connections.
   void answer_later(std::string_view reply);
   bool answers_pending() const { return !later_.empty(); }
+  // Connections still to be read or answered: serve() has their timeouts to keep even when no fd is ready.
+  bool has_connections() const { return !waiting_.empty() || !later_.empty(); }
 
  private:
   struct Waiting {

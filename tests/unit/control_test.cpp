@@ -94,6 +94,7 @@ TEST(ControlCommand, AReplyIsOkOnlyWhenItSaysSo) {
 class ControlServer : public testing::Test {
  protected:
   void SetUp() override {
+    // Under /tmp rather than the test's TempDir: a socket's path must fit sun_path's 107 bytes.
     char name[] = "/tmp/control-test-XXXXXX";
     ASSERT_NE(mkdtemp(name), nullptr);
     dir_ = name;

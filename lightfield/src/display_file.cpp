@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -34,13 +35,12 @@ std::string type_name(const toml::node& node) {
 
 std::string describe(const toml::node& node) {
   if (node.is_string()) return "'" + node.as_string()->get() + "'";
-  if (node.is_integer() || node.is_floating_point()) {
-    std::ostringstream text;
-    if (node.is_integer())
-      text << node.as_integer()->get();
-    else
-      text << node.as_floating_point()->get();
-    return text.str();
+  if (node.is_integer()) return std::to_string(node.as_integer()->get());
+  if (node.is_floating_point()) {
+    // The shortest text that reads back as the same number: 1000000.5 is not 1e+06.
+    char text[32];
+    const std::to_chars_result end = std::to_chars(text, text + sizeof text, node.as_floating_point()->get());
+    return std::string(text, end.ptr);
   }
   return type_name(node);
 }
@@ -216,8 +216,7 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
   roi.only({"world_min", "world_max", "physical_min", "physical_max"});
   if (roi.has("world_min") || roi.has("world_max")) {
     Box world{roi.point("world_min"), roi.point("world_max")};
-    for (int axis = 0; axis < 3; ++axis)
-      if (!(world.min[axis] < world.max[axis])) roi.fail("world_max", "a point above roi.world_min on every axis");
+    if (!glm::all(glm::lessThan(world.min, world.max))) roi.fail("world_max", "a point above roi.world_min on every axis");
     out.world_roi = world;
   }
   // Default: the screen's rectangle, as deep as a quarter of its smaller side on each side of it.
@@ -226,9 +225,8 @@ void read_modules(const Fields& top, ModulesDisplay& out) {
                       {out.screen_width * 0.5, out.screen_height * 0.5, depth}};
   if (roi.has("physical_min") || roi.has("physical_max")) {
     out.physical_roi = {roi.point("physical_min"), roi.point("physical_max")};
-    for (int axis = 0; axis < 3; ++axis)
-      if (!(out.physical_roi.min[axis] < out.physical_roi.max[axis]))
-        roi.fail("physical_max", "a point above roi.physical_min on every axis");
+    if (!glm::all(glm::lessThan(out.physical_roi.min, out.physical_roi.max)))
+      roi.fail("physical_max", "a point above roi.physical_min on every axis");
   }
   if (!(out.physical_roi.min.z > out.module_z))
     roi.fail("physical_min", "z above modules.z (" + std::to_string(out.module_z) + "): the box lies in front of the modules");
@@ -295,15 +293,15 @@ bool parse_calibration(std::string_view text, const std::string& source, Calibra
     error = source + ": expected a JSON object (the display's visual.json)";
     return false;
   }
-  const auto field = [&](const char* key, bool required, double fallback, double& value, bool (*in_range)(double),
-                         const char* range) {
+  // `fallback`: the value where the file may omit the field; nullptr where it must give it.
+  const auto field = [&](const char* key, const double* fallback, double& value, bool (*in_range)(double), const char* range) {
     const auto it = doc.find(key);
     if (it == doc.end()) {
-      if (required) {
+      if (fallback == nullptr) {
         error = source + ": " + key + ": expected an object {\"value\": number " + range + "}, got nothing";
         return false;
       }
-      value = fallback;
+      value = *fallback;
       return true;
     }
     const nlohmann::json* number = it->is_object() && it->contains("value") ? &(*it)["value"] : nullptr;
@@ -328,15 +326,15 @@ bool parse_calibration(std::string_view text, const std::string& source, Calibra
   const auto cone = [](double v) { return v > 0.0 && v < 180.0; };
   double width = 0.0, height = 0.0, inverted = 0.0, flip_x = 0.0, flip_y = 0.0;
   Calibration c;
-  if (!field("pitch", true, 0.0, c.pitch, pitch, "in (0, 1e6]") ||
-      !field("slope", true, 0.0, c.slope, slope, "of magnitude 1e-6..1e6") ||
-      !field("center", true, 0.0, c.center, bounded, "of magnitude at most 1e6") ||
-      !field("DPI", true, 0.0, c.dpi, dpi, "in 1..1e6") ||
-      !field("screenW", true, 0.0, width, side, "(an integer in 1..16384)") ||
-      !field("screenH", true, 0.0, height, side, "(an integer in 1..16384)") ||
-      !field("invView", false, 0.0, inverted, flag, "(0 or 1)") || !field("flipImageX", false, 0.0, flip_x, flag, "(0 or 1)") ||
-      !field("flipImageY", false, 0.0, flip_y, flag, "(0 or 1)") ||
-      !field("viewCone", false, c.view_cone_deg, c.view_cone_deg, cone, "(degrees, in (0, 180))"))
+  const double off = 0.0, default_cone = c.view_cone_deg;
+  if (!field("pitch", nullptr, c.pitch, pitch, "in (0, 1e6]") ||
+      !field("slope", nullptr, c.slope, slope, "of magnitude 1e-6..1e6") ||
+      !field("center", nullptr, c.center, bounded, "of magnitude at most 1e6") ||
+      !field("DPI", nullptr, c.dpi, dpi, "in 1..1e6") || !field("screenW", nullptr, width, side, "(an integer in 1..16384)") ||
+      !field("screenH", nullptr, height, side, "(an integer in 1..16384)") ||
+      !field("invView", &off, inverted, flag, "(0 or 1)") || !field("flipImageX", &off, flip_x, flag, "(0 or 1)") ||
+      !field("flipImageY", &off, flip_y, flag, "(0 or 1)") ||
+      !field("viewCone", &default_cone, c.view_cone_deg, cone, "(degrees, in (0, 180))"))
     return false;
   c.screen_width = static_cast<int>(width);
   c.screen_height = static_cast<int>(height);

@@ -114,10 +114,12 @@ double edge_error_pixels(const Module& m, const glm::dvec3& a, const glm::dvec3&
     const double t = static_cast<double>(step) / kSteps;
     const glm::dvec3 q = a + t * (b - a);
     const std::optional<glm::dvec3> exact = physical_to_image(m, q);
+    // Behind the module or past the observer the module shows no point to compare with. Where it does,
+    // the interpolated clip w is the point's own, which is positive in front of the module.
+    if (!exact) continue;
     const glm::dvec4 clip = clip_a + t * (clip_b - clip_a);
-    if (!exact || clip.w <= 0.0) continue;
     const glm::dvec2 drawn((clip.x / clip.w * 0.5 + 0.5) * m.width, (0.5 - clip.y / clip.w * 0.5) * m.height);
-    worst = std::max(worst, glm::length(drawn - glm::dvec2(*exact)));
+    worst = std::max(worst, glm::length(drawn - glm::dvec2(exact.value())));
   }
   return worst;
 }
@@ -127,8 +129,8 @@ bool sees(const Module& m, const Box& box) {
   if (z0 > z1) return false;
   double x_low = std::numeric_limits<double>::infinity(), x_high = -x_low, y_low = x_low, y_high = -x_low;
   for (const double z : {z0, z1})
-    for (int corner = 0; corner < 2; ++corner) {
-      const glm::dvec2 s = screen_point(m, {corner == 0 ? box.min.x : box.max.x, corner == 0 ? box.min.y : box.max.y, z});
+    for (const glm::dvec3& corner : {box.min, box.max}) {
+      const glm::dvec2 s = screen_point(m, {corner.x, corner.y, z});
       x_low = std::min(x_low, s.x);
       x_high = std::max(x_high, s.x);
       y_low = std::min(y_low, s.y);
@@ -138,8 +140,8 @@ bool sees(const Module& m, const Box& box) {
 }
 
 glm::ivec2 montage_grid(int count) {
-  const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count)))));
-  return {columns, std::max(1, (count + columns - 1) / columns)};
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+  return {columns, (count + columns - 1) / columns};
 }
 
 }  // namespace lightfield

@@ -191,6 +191,22 @@ TEST(LightfieldModules, EdgesBendOnlyWhereDepthChanges) {
   EXPECT_LT(lightfield::edge_error_pixels(m, {-0.6, m.observer_height, -0.3}, {0.6, m.observer_height, 0.3}), 1e-9);
 }
 
+// An edge that runs behind the module (z below -1.2) or past the observer (z above 2.5) is measured
+// only where the module shows its points: the rest has nothing to compare with, and must neither
+// add to the error nor stop the measurement. At the observer's height the error of the part shown
+// is zero, so any contribution of the parts not shown would show.
+TEST(LightfieldModules, AnEdgeLeavingTheModulesDepthRangeIsMeasuredWhereTheModuleShowsIt) {
+  const Module m = lightfield::module_of(c80(), 5);
+  const double height = m.observer_height;
+  EXPECT_LT(lightfield::edge_error_pixels(m, {-0.6, height, 0.3}, {0.6, height, 4.0}), 1e-9);
+  EXPECT_LT(lightfield::edge_error_pixels(m, {-0.6, height, -3.0}, {0.6, height, 0.3}), 1e-9);
+  EXPECT_LT(lightfield::edge_error_pixels(m, {-0.6, height, -3.0}, {0.6, height, 4.0}), 1e-9);
+  // Off that height the part shown has a real error, and it stays finite.
+  const double partly_shown = lightfield::edge_error_pixels(m, {0.0, 0.4, 0.0}, {0.0, 0.4, 4.0});
+  EXPECT_GT(partly_shown, 0.5);
+  EXPECT_TRUE(std::isfinite(partly_shown));
+}
+
 TEST(LightfieldModules, SeesExactlyTheModulesWhoseImageTheBoxReaches) {
   lightfield::ModulesDisplay display = c80();
   display.footprint = {0.6, 0.8};  // each module fills only the right part of the screen
@@ -412,6 +428,47 @@ TEST(LightfieldDisplayFile, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(parse_error("type = \"modules\"\n[screen\n").substr(0, 24), "/tmp/lf-test/d.toml:2:8:");
   EXPECT_EQ(parse_error(replaced("x_first = -1.0", "x_first = -1e300")),
             "/tmp/lf-test/d.toml:9:11: modules.x_first: expected a number of magnitude at most 1e6, got -1e+300");
+}
+
+// Each number's range holds at its ends as the error says: a screen or distance must be above zero,
+// not zero; a magnitude of exactly 1e6 is accepted and one past it refused; the region in front of
+// the modules must end before the observer line, not on it.
+TEST(LightfieldDisplayFile, GeometryRangesHoldAtTheirEnds) {
+  EXPECT_EQ(parse_error(replaced("width = 1.6", "width = 0")),
+            "/tmp/lf-test/d.toml:3:9: screen.width: expected a number > 0, got 0");
+  EXPECT_EQ(parse_error(replaced("distance = 2.5", "distance = 0.0")),
+            "/tmp/lf-test/d.toml:6:12: observer.distance: expected a number > 0 (the observer line's distance from the screen), "
+            "got 0");
+  lightfield::Display display;
+  std::string error;
+  ASSERT_TRUE(
+      lightfield::parse_display(replaced("distance = 2.5", "distance = 2.5\nheight = 1000000.0"), "d.toml", display, error))
+      << error;
+  EXPECT_EQ(display.modules.observer_height, 1e6);
+  ASSERT_TRUE(
+      lightfield::parse_display(replaced("distance = 2.5", "distance = 2.5\nheight = -1000000"), "d.toml", display, error))
+      << error;
+  EXPECT_EQ(display.modules.observer_height, -1e6);
+  EXPECT_EQ(parse_error(replaced("distance = 2.5", "distance = 2.5\nheight = 1000000.5")),
+            "/tmp/lf-test/d.toml:7:10: observer.height: expected a number of magnitude at most 1e6, got 1000000.5");
+
+  const std::string roi = std::string(kGood) + "[roi]\nphysical_min = [-0.5, -0.4, -0.2]\n";
+  EXPECT_EQ(parse_error(roi + "physical_max = [0.5, 0.4, 2.5]\n"),
+            "/tmp/lf-test/d.toml:15:16: roi.physical_max: expected z below observer.distance (2.500000), got array");
+  ASSERT_TRUE(lightfield::parse_display(roi + "physical_max = [0.5, 0.4, 2.4]\n", "d.toml", display, error)) << error;
+  EXPECT_EQ(display.modules.physical_roi.max.z, 2.4);
+}
+
+// The modules' positions come either as a list or as a span, never both, and a span of one module
+// has one position.
+TEST(LightfieldDisplayFile, ModulePositionsAreGivenOneWayOnly) {
+  const std::string listed = replaced("count = 4\nx_first = -1.0\nx_last = 1.0", "x = [0.0, 1.0]");
+  EXPECT_EQ(parse_error(replaced("x = [0.0, 1.0]", "x = [0.0, 1.0]\nx_last = 1.0", listed)),
+            "/tmp/lf-test/d.toml:9:10: modules.x_last: expected nothing when modules.x lists the positions, got 1");
+  EXPECT_EQ(parse_error(replaced("x = [0.0, 1.0]", "x = [0.0, 1.0]\nx_first = 0.0", listed)),
+            "/tmp/lf-test/d.toml:9:11: modules.x_first: expected nothing when modules.x lists the positions, got 0");
+  EXPECT_EQ(parse_error(replaced("count = 4", "count = 1")),
+            "/tmp/lf-test/d.toml:10:10: modules.x_last: expected x_first when there is one module, got 1");
 }
 
 // Every module's image goes into one montage texture: module count times resolution is checked in

@@ -90,6 +90,17 @@ class Selection(unittest.TestCase):
     def test_a_test_name_becomes_an_exact_ctest_pattern(self):
         self.assertEqual(mutants_random.ctest_pattern(["gl.Platforms/A.b", "x(y)"]), r"^(gl\.Platforms/A\.b|x\(y\))$")
 
+    def test_many_test_names_are_split_into_patterns_cmake_can_compile(self):
+        # CMake's regex compiler refuses an expression past about 32 kB, and ctest then runs nothing
+        # and passes: 2000 names of 40 characters must not reach it as one pattern.
+        names = [f"unit.SomeSuite{i}.SomeLongishTestName{i}" for i in range(2000)]
+        patterns = mutants_random.ctest_patterns(names)
+        self.assertGreater(len(patterns), 1)
+        self.assertTrue(all(len(p) <= mutants_random.PATTERN_LIMIT for p in patterns))
+        matched = [n for n in names + ["unit.SomeSuite1.SomeLongishTestName12"] if any(re.search(p, n) for p in patterns)]
+        self.assertEqual(matched, names)
+        self.assertEqual(mutants_random.ctest_patterns(["a.b"]), [mutants_random.ctest_pattern(["a.b"])])
+
 
 class Families(unittest.TestCase):
     def test_every_family_names_a_folder_of_code_and_every_vm_test_exists(self):

@@ -87,7 +87,8 @@ double edge_error_pixels(const Module& m, const glm::dvec3& a, const glm::dvec3&
 // and S.y on y and z only, each a perspective.
 bool sees(const Module& m, const Box& physical_box);
 
-// Tiles of a montage of `count` images: columns x rows, as square as it gets.
+// Tiles of a montage of `count` images (at least one; a display file has 1..1024 modules): columns x
+// rows, as square as it gets.
 glm::ivec2 montage_grid(int count);
 
 }  // namespace lightfield

@@ -64,9 +64,10 @@ set(CPACK_COMPONENTS_GROUPING ALL_COMPONENTS_IN_ONE)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # Library dependencies come from dpkg-shlibdeps on the installed binary (dpkg-dev); systemd for
-# systemd-sysusers in postinst; Mesa's EGL and drivers are what the GPU is reached through.
+# systemd-sysusers in postinst; tzdata for a board's opening hours in a named time zone (read at run
+# time, which shlibdeps cannot see); Mesa's EGL and drivers are what the GPU is reached through.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS systemd)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "systemd, tzdata")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS libosmesa6)
 string(JOIN "\n" conffiles_text ${board_conffiles})

@@ -6,6 +6,8 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <initializer_list>
 #include <map>
 #include <sstream>
@@ -116,11 +118,24 @@ class Fields {
     if (!v || v->get() < lo || v->get() > hi) fail(key, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
     return v->get();
   }
+  bool has(const std::string& key) const { return t_.get(key) != nullptr; }
   bool boolean(const std::string& key, bool fallback) const {
     const toml::node* n = t_.get(key);
     if (!n) return fallback;
     if (!n->is_boolean()) fail(key, "true or false");
     return *n->value<bool>();
+  }
+  // An element of the list `key`, at its own position: "schedule.open[1]: expected ..., got '...'".
+  [[noreturn]] void fail_at(const toml::node& element, const std::string& key, std::size_t index,
+                            const std::string& expected) const {
+    throw ConfigError(position(source_, element.source()) + ": " + prefix_ + key + "[" + std::to_string(index) + "]: expected " +
+                      expected + ", got " + describe(element));
+  }
+  // A list given, each element checked by the caller; `expected` when it is missing or not a list.
+  const toml::array& list(const std::string& key, const std::string& expected) const {
+    const toml::node* n = t_.get(key);
+    if (n == nullptr || !n->is_array() || n->as_array()->empty()) fail(key, expected);
+    return *n->as_array();
   }
   const std::string& source() const { return source_; }
   const std::string& prefix() const { return prefix_; }
@@ -169,6 +184,52 @@ ButtonTiming read_timing(const Fields& f, ButtonTiming t) {
   return t;
 }
 
+// "2026-12-24" or a TOML date (2026-12-24); none when it is neither or no such day exists.
+std::optional<std::chrono::year_month_day> date_of(const toml::node& node) {
+  int year = 0;
+  unsigned month = 0, day = 0;
+  if (const auto* d = node.as_date()) {
+    year = d->get().year;
+    month = d->get().month;
+    day = d->get().day;
+  } else if (const auto* s = node.as_string(); s != nullptr && s->get().size() == 10) {
+    const std::string& text = s->get();
+    if (text[4] != '-' || text[7] != '-' || std::sscanf(text.c_str(), "%4d-%2u-%2u", &year, &month, &day) != 3)
+      return std::nullopt;
+  } else {
+    return std::nullopt;
+  }
+  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month), std::chrono::day(day)};
+  return date.ok() ? std::optional(date) : std::nullopt;
+}
+
+OpeningHours read_schedule(const Fields& f) {
+  f.only({"open", "timezone", "holidays"});
+  const toml::array& open = f.list("open", "a list of weekly ranges such as [\"Mo-Fr 09:00-18:00\", \"Sa 10:00-16:00\"]");
+  std::vector<OpeningRange> ranges;
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    const toml::node& element = *open.get(i);
+    OpeningRange range;
+    std::string expected = "a string such as \"Mo-Fr 09:00-18:00\"";
+    if (!element.is_string() || !parse_opening_range(element.as_string()->get(), range, expected))
+      f.fail_at(element, "open", i, expected);
+    ranges.push_back(range);
+  }
+  std::vector<std::chrono::year_month_day> holidays;
+  if (f.has("holidays")) {
+    const toml::array& days = f.list("holidays", "a list of dates (2026-12-24 or \"2026-12-24\")");
+    for (std::size_t i = 0; i < days.size(); ++i) {
+      const std::optional<std::chrono::year_month_day> day = date_of(*days.get(i));
+      if (!day) f.fail_at(*days.get(i), "holidays", i, "a date that exists, as 2026-12-24 or \"2026-12-24\"");
+      holidays.push_back(*day);
+    }
+  }
+  std::string error;
+  std::optional<OpeningHours> hours = OpeningHours::make(std::move(ranges), f.str("timezone", ""), std::move(holidays), error);
+  if (!hours) f.fail("timezone", error);
+  return std::move(*hours);
+}
+
 std::string resolve(const std::string& source, const std::string& path) {
   if (path.empty() || path[0] == '/') return path;
   const auto slash = source.rfind('/');
@@ -200,7 +261,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     return n ? n->as_array() : nullptr;
   };
 
-  top.only({"board", "display", "buttons", "button", "led", "camera", "mock"});
+  top.only({"board", "display", "schedule", "buttons", "button", "led", "camera", "mock"});
   if (const auto* t = table("board")) {
     const Fields f(*t, source_name, "board.");
     f.only({"name", "consumer", "status_file", "control", "metrics_file", "self_check_interval_s"});
@@ -217,6 +278,7 @@ BoardConfig parse_board(const std::string& toml_text, const std::string& source_
     b.display_rotation = static_cast<int>(f.integer("rotation", 0, 0, 270));
     if (b.display_rotation % 90 != 0) f.fail("rotation", "0, 90, 180 or 270 (degrees clockwise)");
   }
+  if (const auto* t = table("schedule")) b.schedule = read_schedule(Fields(*t, source_name, "schedule."));
   LineOwners owners;
   ButtonTiming defaults;
   if (const auto* t = table("buttons")) {

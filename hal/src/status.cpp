@@ -24,7 +24,8 @@ constexpr base::Name<LedPattern> kLedPatternNames[] = {{LedPattern::off, "off"},
                                                        {LedPattern::on, "on"},
                                                        {LedPattern::blink_slow, "blink-slow"},
                                                        {LedPattern::blink_fast, "blink-fast"},
-                                                       {LedPattern::heartbeat, "heartbeat"}};
+                                                       {LedPattern::heartbeat, "heartbeat"},
+                                                       {LedPattern::standby, "standby"}};
 static_assert(base::in_enum_order(kLedPatternNames));
 
 // A pattern is a period and the phases within it where the level toggles, starting on.
@@ -46,6 +47,8 @@ PatternShape shape(LedPattern p) {
     // Two short beats then a pause, the rhythm people read as "alive".
     case LedPattern::heartbeat:
       return {milliseconds(1200), {milliseconds(100), milliseconds(250), milliseconds(350)}, 3};
+    case LedPattern::standby:
+      return {milliseconds(3000), {milliseconds(100)}, 1};
   }
   return {Nanos::max(), {}, 0};
 }

@@ -230,6 +230,16 @@ int main(int argc, char** argv) {
                        "Write a line per frame: item, state, LED patterns, button actions, frame time, resident memory");
   play_cmd->add_option("--camera-script", play.camera_script, "Mock camera: lines of `t_ms unplug|replug` (with --hal mock)");
   play_cmd->add_option("--shader-cache", play.shader_cache, shader_cache_help);
+  play_cmd
+      ->add_option_function<std::string>(
+          "--start-time",
+          [&play](const std::string& text) {
+            std::string error;
+            if (!app::parse_start_time(text, play.start_time_s, error)) throw CLI::ValidationError(error);
+          },
+          "Play as if the wall clock read TIME at the start (2026-12-07T17:59:30Z, with an offset, or Unix seconds): "
+          "previews the board's opening hours and wallclock playlists; default now")
+      ->type_name("TIME");
   SettingOptions play_settings;
   play_settings.add_to(*play_cmd, play.settings);
   cli.require_subcommand(0, 1);

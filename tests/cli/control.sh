@@ -36,7 +36,7 @@ reply=$(ctl item 3 2>&1)
 
 reply=$(ctl jump 2>&1)
 [ $? -eq 2 ] || fail "an unknown command did not exit 2"
-grep -q "^error: unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)$" \
+grep -q "^error: unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, display on|off)$" \
   <<<"$reply" || fail "an unknown command said '$reply'"
 grep -q "jump" "$dir/stdout" && fail "an unknown command reached the player"
 

@@ -16,7 +16,7 @@ fail() { echo "metrics: $*"; exit 1; }
 [ "$(ls "$dir")" = "$(printf 'player.prom\nstderr\nstdout')" ] || fail "files left beside the metrics file: $(ls "$dir")"
 "$promtool" check metrics <"$dir/player.prom" >"$dir/promtool.out" 2>&1 || fail "promtool check metrics: $(cat "$dir/promtool.out")"
 for line in 'ssao_player_frames_total 90' 'ssao_player_frame_seconds_count 89' 'ssao_player_errors_total{kind="content"} 1' \
-  'ssao_player_display_connected 1' 'ssao_player_gpu_resets_total 0' 'ssao_player_state{state="playing"} 1'; do
+  'ssao_player_display_connected 1' 'ssao_player_open 1' 'ssao_player_gpu_resets_total 0' 'ssao_player_state{state="playing"} 1'; do
   grep -qxF "$line" "$dir/player.prom" || fail "no line '$line' in: $(cat "$dir/player.prom")"
 done
 grep -q '^ssao_player_info{version="[0-9.]*",platform="egl",renderer="[^"]*"} 1$' "$dir/player.prom" || fail "no info line"

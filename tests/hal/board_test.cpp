@@ -96,7 +96,7 @@ TEST(Board, RefusesUnknownKeysAtEveryLevel) {
             "b.toml:3:11: board.backend: unknown key (expected one of name, consumer, status_file, control, metrics_file, "
             "self_check_interval_s)");
   EXPECT_EQ(error_of("backend = \"linux\"\n"),
-            "b.toml:1:11: backend: unknown key (expected one of board, display, buttons, button, led, camera, mock)");
+            "b.toml:1:11: backend: unknown key (expected one of board, display, schedule, buttons, button, led, camera, mock)");
   EXPECT_EQ(error_of("[display]\nrotate = 90\n"), "b.toml:2:10: display.rotate: unknown key (expected one of rotation)");
   EXPECT_EQ(
       error_of("[buttons]\ndebounce = 30\n").rfind("b.toml:2:12: buttons.debounce: unknown key (expected one of debounce_ms,", 0),

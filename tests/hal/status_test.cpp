@@ -32,21 +32,27 @@ TEST(LedPatterns, BlinkAndHeartbeatToggleAtTheirPhases) {
   const std::pair<int, bool> beat[] = {{0, true},   {99, true},   {100, false},  {249, false}, {250, true},
                                        {349, true}, {350, false}, {1199, false}, {1200, true}};
   for (auto [ms, on] : beat) EXPECT_EQ(pattern_level(LedPattern::heartbeat, milliseconds(ms)), on) << ms;
+  // Standby (closed): a 100 ms flash every 3 s.
+  const std::pair<int, bool> standby[] = {{0, true}, {99, true}, {100, false}, {2999, false}, {3000, true}, {3100, false}};
+  for (auto [ms, on] : standby) EXPECT_EQ(pattern_level(LedPattern::standby, milliseconds(ms)), on) << ms;
+  EXPECT_EQ(pattern_next_change(LedPattern::standby, milliseconds(100)), milliseconds(3000));
 }
 
 TEST(LedPatterns, PeriodIsOneFullCycle) {
   EXPECT_EQ(pattern_period(LedPattern::blink_slow), milliseconds(1000));
   EXPECT_EQ(pattern_period(LedPattern::blink_fast), milliseconds(200));
   EXPECT_EQ(pattern_period(LedPattern::heartbeat), milliseconds(1200));
+  EXPECT_EQ(pattern_period(LedPattern::standby), milliseconds(3000));
   EXPECT_EQ(pattern_period(LedPattern::on), Nanos::max());
   // A period later every pattern is back where it started.
-  for (auto p : {LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat})
+  for (auto p : {LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat, LedPattern::standby})
     for (int ms : {0, 90, 150, 300, 600})
       EXPECT_EQ(pattern_level(p, milliseconds(ms)), pattern_level(p, milliseconds(ms) + pattern_period(p))) << ms;
 }
 
 TEST(LedPatterns, NamesRoundTrip) {
-  for (auto p : {LedPattern::off, LedPattern::on, LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat}) {
+  for (auto p : {LedPattern::off, LedPattern::on, LedPattern::blink_slow, LedPattern::blink_fast, LedPattern::heartbeat,
+                 LedPattern::standby}) {
     LedPattern q = LedPattern::off;
     ASSERT_TRUE(parse_led_pattern(to_string(p), q));
     EXPECT_EQ(p, q);

@@ -64,9 +64,9 @@ dpkg-deb -e "$deb" "$out/control"
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "Depends: $depends"
 # Computed from the binary's NEEDED libraries (versioned, as dpkg-shlibdeps writes them), and the
-# systemd that postinst's systemd-sysusers comes from.
+# systemd that postinst's systemd-sysusers comes from; tzdata for opening hours in a named zone.
 # libopenimageio comes from the image module (/usr/lib/ssao-player), which the player loads on first use.
-for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'systemd'; do
+for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'libdate-tz3' 'systemd' 'tzdata'; do
   case ", $depends," in
     *", $needed"*) ;;
     *) fail "Depends: expected $needed..., got '$depends'" ;;

@@ -25,8 +25,8 @@ using control::Verb;
 namespace {
 
 TEST(ControlCommand, EachVerbReadsAndWritesBack) {
-  for (const char* text :
-       {"next", "previous", "pause", "resume", "check", "reload", "restart", "item 0", "item 12", "screenshot"}) {
+  for (const char* text : {"next", "previous", "pause", "resume", "check", "reload", "restart", "item 0", "item 12", "screenshot",
+                           "display on", "display off"}) {
     Command command;
     std::string error;
     ASSERT_TRUE(control::parse_command(text, command, error)) << text << ": " << error;
@@ -43,11 +43,15 @@ TEST(ControlCommand, AMalformedCommandSaysWhatWasExpected) {
   const struct {
     std::string text, error;
   } cases[] = {
-      {"", "unknown command '' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+      {"",
+       "unknown command '' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, display "
+       "on|off)"},
       {"jump",
-       "unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+       "unknown command 'jump' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, "
+       "display on|off)"},
       {"Next",
-       "unknown command 'Next' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+       "unknown command 'Next' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, "
+       "display on|off)"},
       {"next ", "next: takes no argument, got ''"},
       {"pause now", "pause: takes no argument, got 'now'"},
       {"item", "item: expected an item number from 0 (as the status file counts), got ''"},
@@ -55,10 +59,14 @@ TEST(ControlCommand, AMalformedCommandSaysWhatWasExpected) {
       {"item 2x", "item: expected an item number from 0 (as the status file counts), got '2x'"},
       {"item 1000001", "item: expected an item number from 0 (as the status file counts), got '1000001'"},
       {"next\n\n",
-       "unknown command 'next\\x0a' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)"},
+       "unknown command 'next\\x0a' (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, "
+       "display on|off)"},
       {"a\x01'b\\",
        "unknown command 'a\\x01\\x27b\\x5c' (expected one of next, previous, pause, resume, check, reload, restart, item N, "
-       "screenshot)"},
+       "screenshot, display on|off)"},
+      {"display", "display: expected on or off, got ''"},
+      {"display dim", "display: expected on or off, got 'dim'"},
+      {"display on off", "display: expected on or off, got 'on off'"},
   };
   for (const auto& c : cases) {
     Command command;
@@ -78,8 +86,10 @@ TEST(ControlCommand, LongTextIsShownCut) {
   Command command;
   std::string error;
   EXPECT_FALSE(control::parse_command(std::string(100, 'z'), command, error));
-  EXPECT_EQ(error, "unknown command '" + std::string(64, 'z') +
-                       "'... (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot)");
+  EXPECT_EQ(
+      error,
+      "unknown command '" + std::string(64, 'z') +
+          "'... (expected one of next, previous, pause, resume, check, reload, restart, item N, screenshot, display on|off)");
 }
 
 TEST(ControlCommand, AReplyIsOkOnlyWhenItSaysSo) {
@@ -230,7 +240,7 @@ TEST_F(ControlServer, MalformedAndOversizedCommandsAreRefusedAndLogged) {
   serve(server);
   EXPECT_EQ(reply_of(bad),
             "error: unknown command 'format c:' (expected one of next, previous, pause, resume, check, reload, restart, "
-            "item N, screenshot)");
+            "item N, screenshot, display on|off)");
   EXPECT_EQ(reply_of(big), "error: a command of 1004 bytes, more than 256");
   EXPECT_TRUE(handled_.empty());
   ASSERT_EQ(log_.size(), 2u);

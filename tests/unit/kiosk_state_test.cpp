@@ -14,8 +14,8 @@ using State = KioskState::State;
 using Shown = KioskState::Shown;
 using hal::LedPattern;
 
-constexpr std::array<State, 6> kStates = {State::starting, State::loading, State::playing,
-                                          State::paused,   State::error,   State::no_display};
+constexpr std::array<State, 7> kStates = {State::starting, State::loading,    State::playing, State::paused,
+                                          State::error,    State::no_display, State::closed};
 
 // A kiosk in `state`, reached the way the player reaches it.
 KioskState in(State state) {
@@ -38,6 +38,9 @@ KioskState in(State state) {
     case State::no_display:
       kiosk.display_lost();
       break;
+    case State::closed:
+      kiosk.closed();
+      break;
   }
   EXPECT_EQ(kiosk.state(), state);
   return kiosk;
@@ -56,6 +59,7 @@ TEST(KioskState, TheStatusFileNamesEveryState) {
   EXPECT_EQ(app::name(State::paused), "paused");
   EXPECT_EQ(app::name(State::error), "error");
   EXPECT_EQ(app::name(State::no_display), "no display");
+  EXPECT_EQ(app::name(State::closed), "closed");
 }
 
 // One event from every state: where it lands, and whether the status goes out at once.
@@ -72,6 +76,11 @@ void expect_transitions(const char* event, auto&& apply, auto&& expected) {
 TEST(KioskState, ADisplayThatGoesAwayShowsNoDisplayFromEveryState) {
   expect_transitions(
       "display lost", [](KioskState& k) { return k.display_lost(); }, [](State) { return State::no_display; });
+}
+
+TEST(KioskState, ClosingShowsClosedFromEveryState) {
+  expect_transitions(
+      "closed", [](KioskState& k) { return k.closed(); }, [](State) { return State::closed; });
 }
 
 TEST(KioskState, AFrameOfTheScenePlaysFromEveryState) {
@@ -98,10 +107,12 @@ TEST(KioskState, AFrameWithNothingPlayableIsAnErrorFromEveryStatePausedOrNot) {
         [](State) { return State::error; });
 }
 
-TEST(KioskState, StoppingReportsPlayingUnlessInErrorOrWithoutADisplay) {
+TEST(KioskState, StoppingReportsPlayingUnlessInErrorWithoutADisplayOrClosed) {
   expect_transitions(
       "stopped", [](KioskState& k) { return k.stopped(); },
-      [](State from) { return from == State::error || from == State::no_display ? from : State::playing; });
+      [](State from) {
+        return from == State::error || from == State::no_display || from == State::closed ? from : State::playing;
+      });
 }
 
 TEST(KioskState, PauseAndResumeAsTheButtonDoesThem) {
@@ -169,6 +180,10 @@ constexpr Plan kPlans[] = {
     {State::no_display, true, false, LedPattern::blink_slow, LedPattern::blink_slow},
     {State::no_display, false, true, LedPattern::blink_slow, LedPattern::blink_fast},
     {State::no_display, true, true, LedPattern::blink_slow, LedPattern::blink_fast},
+    {State::closed, false, false, LedPattern::standby, LedPattern::off},
+    {State::closed, true, false, LedPattern::standby, LedPattern::blink_slow},
+    {State::closed, false, true, LedPattern::standby, LedPattern::blink_fast},
+    {State::closed, true, true, LedPattern::standby, LedPattern::blink_fast},
 };
 
 TEST(KioskLeds, EveryStateWithAndWithoutWarningsAndAFailedCheck) {

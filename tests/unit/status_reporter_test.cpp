@@ -160,6 +160,28 @@ TEST(Metrics, TheReporterWritesTheFileWithErrorsByKind) {
         "ssao_player_item 0\n", "ssao_player_item_info{scene=\"a.glb\"} 1\n", "ssao_player_state{state=\"starting\"} 1\n"})
     EXPECT_NE(text.find(line), std::string::npos) << line << "\nin\n" << text;
   EXPECT_EQ(reporter.errors().size(), 2u);
+  // Each state is one label value, "no display" as no_display; a display switched off for the night
+  // is still connected, and the file says it is closed.
+  const auto read = [&] {
+    std::ifstream again(file);
+    return std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  };
+  reporter.set_display_connected(false);
+  kiosk.display_lost();
+  reporter.publish(report, 0);
+  std::string lost = read();
+  EXPECT_NE(lost.find("ssao_player_state{state=\"no_display\"} 1\n"), std::string::npos) << lost;
+  EXPECT_NE(lost.find("ssao_player_display_connected 0\n"), std::string::npos) << lost;
+  EXPECT_NE(lost.find("ssao_player_open 1\n"), std::string::npos) << lost;
+  reporter.set_display_connected(true);
+  reporter.set_open(false);
+  kiosk.closed();
+  reporter.publish(report, 0);
+  const std::string closed = read();
+  EXPECT_NE(closed.find("ssao_player_state{state=\"closed\"} 1\n"), std::string::npos) << closed;
+  EXPECT_NE(closed.find("ssao_player_state{state=\"no_display\"} 0\n"), std::string::npos) << closed;
+  EXPECT_NE(closed.find("ssao_player_display_connected 1\n"), std::string::npos) << closed;
+  EXPECT_NE(closed.find("ssao_player_open 0\n"), std::string::npos) << closed;
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     EXPECT_EQ(entry.path().filename(), "player.prom") << "nothing left beside it";
   std::filesystem::remove_all(dir);

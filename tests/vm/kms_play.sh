@@ -93,6 +93,37 @@ bounded 300 "$out/legacy.out" "$player" "${common[@]}" --drm-atomic no --frames 
 grep -q "legacy modesetting" "$out/legacy.out" || fail "--drm-atomic no did not use legacy modesetting"
 grep -q "^played 10 frames, 0 error(s)" "$out/legacy.out" || fail "legacy: expected 10 frames and no error"
 
+# `player ctl display off|on`, as the opening hours switch the display: the CRTC goes inactive (read
+# back from the kernel through libdrm: atomic ACTIVE, legacy DPMS), then frames flip again.
+display_off_and_on() {  # NAME EXPECTED_OFF_STATE [PLAY OPTIONS...]
+  local name=$1 expected=$2 socket=/run/ssao-player-vm-control pid
+  shift 2
+  rm -f "$out/$name.log"
+  "$player" "${common[@]}" "$@" --control "$socket" --log "$out/$name.log" >"$out/$name.out" 2>&1 &
+  pid=$!
+  wait_log() { for _ in $(seq 1 3000); do [ "$(wc -l <"$out/$name.log" 2>/dev/null || echo 0)" -ge "$1" ] && return 0; sleep 0.1; done; return 1; }
+  wait_log 3 || { kill "$pid"; cat "$out/$name.out"; fail "$name: no frames within 300 s"; }
+  "$player" ctl --control "$socket" --timeout 60 display off || { kill "$pid"; fail "$name: display off was refused"; }
+  grep -q "^schedule: off by command; display off (Virtual-1 $expected)" "$out/$name.out" ||
+    { kill "$pid"; cat "$out/$name.out"; fail "$name: the kernel does not report the display off ($expected)"; }
+  local before
+  before=$(wc -l <"$out/$name.log")
+  sleep 2
+  [ "$(wc -l <"$out/$name.log")" = "$before" ] || { kill "$pid"; fail "$name: frames were presented while the display was off"; }
+  "$player" ctl --control "$socket" --timeout 60 display on || { kill "$pid"; fail "$name: display on was refused"; }
+  wait_log $((before + 3)) || { kill "$pid"; cat "$out/$name.out"; fail "$name: no frames after display on"; }
+  kill -TERM "$pid"
+  wait "$pid" || { cat "$out/$name.out"; fail "$name: the player exited with $? on SIGTERM"; }
+  grep -q "warning\|error" "$out/$name.out" && { cat "$out/$name.out"; fail "$name: warnings or errors"; }
+}
+echo "== display off and on (atomic)"
+display_off_and_on power-atomic "CRTC [0-9]* ACTIVE=0" --drm-writeback "$out/power-scanout.png"
+# What the display shows after it came back on (read back through the writeback connector at exit)
+# is a frame, not black.
+"$image_check" --size 640x480 --min-colours 64 "$out/power-scanout.png" || fail "the display shows no frame after display on"
+echo "== display off and on (legacy)"
+display_off_and_on power-legacy "DPMS=off" --drm-atomic no
+
 echo "== a mode the display does not offer"
 if "$player" play builtin:demo --platform kms --drm-mode 1234x567 --frames 1 >"$out/bad_mode.out" 2>&1; then
   fail "an unknown mode was accepted"

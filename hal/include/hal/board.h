@@ -8,6 +8,7 @@
 
 #include "hal/buttons.h"
 #include "hal/camera.h"
+#include "hal/opening_hours.h"
 
 namespace hal {
 
@@ -62,6 +63,8 @@ struct BoardConfig {
   // [display] rotation: how far the player turns its frames (clockwise, as seen) for a display mounted
   // turned; done by the renderer, since many boards cannot rotate the scanout. 0, 90, 180 or 270.
   int display_rotation = 0;
+  // [schedule]: the opening hours; none: always open.
+  std::optional<OpeningHours> schedule;
   std::string mock_button_script;  // relative paths are resolved against the board file's folder
   std::vector<std::string> mock_camera_images;
 };

@@ -10,7 +10,8 @@
 
 namespace hal {
 
-enum class LedPattern : std::uint8_t { off, on, blink_slow, blink_fast, heartbeat };
+// standby: a short flash every 3 s, as a switched-off television's LED shows it is there and asleep.
+enum class LedPattern : std::uint8_t { off, on, blink_slow, blink_fast, heartbeat, standby };
 std::string_view to_string(LedPattern p);
 bool parse_led_pattern(std::string_view text, LedPattern& out);
 

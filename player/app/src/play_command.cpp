@@ -8,6 +8,7 @@
 #include "camera_script.h"
 #include "control/server.h"
 
+#include "base/parse.h"
 #include "gl/caps.h"
 #include "gl/gl_api.h"
 #include "gl/session.h"
@@ -26,6 +27,9 @@
 #include "play/status_reporter.h"
 #include "render/renderer.h"
 #include "shader_cache.h"
+
+#include <chrono>
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -224,7 +228,7 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
   SelfCheckSession check(devices.camera.get(), devices.mock_camera, std::move(camera_script), board.self_check_interval_s,
                          clock.devices(), status, kiosk);
   PlayLoop loop({options, out, err, clock, devices, kiosk, status, signals, watch, buttons, loader, platform, drawer, scenes,
-                 check, control},
+                 check, control, board.schedule ? &*board.schedule : nullptr},
                 std::move(playlist_path), std::move(playlist), resume.frames);
   const int code = loop.run();
   next = {true, clock.start(), clock.wall_start(), clock.manual_now(), loop.frames(), resume.gpu_resets};
@@ -234,10 +238,45 @@ int play_session(const PlayOptions& options, std::ostream& out, std::ostream& er
 
 }  // namespace
 
+bool parse_start_time(const std::string& text, double& unix_s, std::string& error) {
+  long long seconds = 0;
+  if (base::parse_int(text, 0, 253402300799, seconds)) {  // up to the year 9999
+    unix_s = static_cast<double>(seconds);
+    return true;
+  }
+  // RFC 3339 with whole seconds: the date, 'T', the time, then 'Z' or an offset +HH:MM / -HH:MM.
+  int year = 0, offset_h = 0, offset_m = 0, consumed = 0;
+  unsigned month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  char zone = 0;
+  if (std::sscanf(text.c_str(), "%4d-%2u-%2uT%2u:%2u:%2u%c%n", &year, &month, &day, &hour, &minute, &second, &zone, &consumed) ==
+          7 &&
+      hour < 24 && minute < 60 && second < 60) {
+    const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month), std::chrono::day(day)};
+    bool zone_ok = zone == 'Z' && static_cast<size_t>(consumed) == text.size();
+    if (zone == '+' || zone == '-') {
+      int more = 0;
+      zone_ok = std::sscanf(text.c_str() + consumed, "%2d:%2d%n", &offset_h, &offset_m, &more) == 2 && offset_h < 24 &&
+                offset_m < 60 && static_cast<size_t>(consumed + more) == text.size() && more == 5;
+    }
+    if (date.ok() && zone_ok) {
+      const long long offset_s = (zone == '-' ? -1 : 1) * (offset_h * 3600LL + offset_m * 60LL);
+      unix_s = static_cast<double>(std::chrono::sys_days(date).time_since_epoch().count() * 86400LL + hour * 3600LL +
+                                   minute * 60LL + second - offset_s);
+      return true;
+    }
+  }
+  error = "--start-time: expected a time as 2026-12-07T17:59:30Z, 2026-12-07T18:59:30+01:00 or Unix seconds, got '" + text + "'";
+  return false;
+}
+
 int run_play(const PlayOptions& options, std::ostream& out, std::ostream& err) {
-  return play_with_recovery([&](const Resume& resume, Resume& next,
-                                std::string& reason) { return play_session(options, out, err, resume, next, reason); },
-                            out, err);
+  return play_with_recovery(
+      [&](const Resume& resume, Resume& next, std::string& reason) {
+        Resume first = resume;
+        if (!resume.resumed && options.start_time_s >= 0.0) first.wall_start = options.start_time_s;
+        return play_session(options, out, err, first, next, reason);
+      },
+      out, err);
 }
 
 }  // namespace app

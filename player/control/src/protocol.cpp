@@ -11,6 +11,7 @@ constexpr base::Name<Verb> kVerbs[] = {
     {Verb::next, "next"},       {Verb::previous, "previous"}, {Verb::pause, "pause"},
     {Verb::resume, "resume"},   {Verb::check, "check"},       {Verb::reload, "reload"},
     {Verb::restart, "restart"}, {Verb::item, "item"},         {Verb::screenshot, "screenshot"},
+    {Verb::display, "display"},
 };
 static_assert(base::in_enum_order(kVerbs));
 
@@ -40,8 +41,10 @@ std::string_view to_string(Verb verb) {
 
 std::string verbs_text() {
   std::vector<std::string> names = base::names_of(kVerbs);
-  for (std::string& name : names)
+  for (std::string& name : names) {
     if (name == "item") name += " N";
+    if (name == "display") name += " on|off";
+  }
   return base::join_names(names);
 }
 
@@ -67,6 +70,12 @@ bool parse_command(std::string_view message, Command& out, std::string& error) {
       return false;
     }
     command.item = static_cast<int>(item);
+  } else if (command.verb == Verb::display) {
+    if (argument != "on" && argument != "off") {
+      error = "display: expected on or off, got " + shown(argument);
+      return false;
+    }
+    command.display_on = argument == "on";
   } else if (space != std::string_view::npos) {
     error = std::string(verb_text) + ": takes no argument, got " + shown(argument);
     return false;
@@ -78,6 +87,7 @@ bool parse_command(std::string_view message, Command& out, std::string& error) {
 std::string format_command(const Command& command) {
   std::string text(to_string(command.verb));
   if (command.verb == Verb::item) text += " " + std::to_string(command.item);
+  if (command.verb == Verb::display) text = command.display_on ? "display on" : "display off";
   return text;
 }
 

@@ -64,6 +64,8 @@ class AtomicCommit final : public Commit {
   Prepared prepare(const Target& target, std::string& error) override;
   bool modeset(std::uint32_t fb, int& error_code) override;
   bool flip(std::uint32_t fb, std::uint64_t sequence, int& error_code) override;
+  bool power_off(int& error_code) override;
+  std::optional<bool> powered() const override;
   std::uint32_t driven_crtc() const override { return driven_.crtc; }
   std::uint32_t connector_crtc_property() const override { return props_.connector_crtc; }
 
@@ -153,6 +155,22 @@ bool AtomicCommit::modeset(std::uint32_t fb, int& error_code) {
   driven_plane_ = plane_;
   driven_props_ = props_;
   return true;
+}
+
+bool AtomicCommit::power_off(int& error_code) {
+  drmModeAtomicReq* request = request_.get();
+  drmModeAtomicSetCursor(request, 0);
+  // The mode, the connector and the plane stay as they are: a modeset with ACTIVE=1 shows them again.
+  drmModeAtomicAddProperty(request, target_.crtc, props_.crtc_active, 0);
+  const int result = drmModeAtomicCommit(fd_, request, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr);
+  error_code = result == 0 ? 0 : errno;
+  return result == 0;
+}
+
+std::optional<bool> AtomicCommit::powered() const {
+  constexpr std::uint64_t kUnread = ~std::uint64_t{0};
+  const std::uint64_t active = property_value(fd_, target_.crtc, DRM_MODE_OBJECT_CRTC, "ACTIVE", kUnread);
+  return active == kUnread ? std::nullopt : std::optional<bool>(active != 0);
 }
 
 bool AtomicCommit::flip(std::uint32_t fb, std::uint64_t sequence, int& error_code) {

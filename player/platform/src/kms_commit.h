@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -39,6 +40,18 @@ class Commit {
   // Shows `fb` in the target's mode, switching off what an earlier modeset drove elsewhere.
   // Blocking. False with errno's code.
   virtual bool modeset(std::uint32_t fb, int& error_code) = 0;
+  // Switches the display off and keeps what is driven (atomic: the CRTC's ACTIVE to 0; legacy: the
+  // connector's DPMS to off); the next modeset switches it on again. Blocking. False with errno's code.
+  virtual bool power_off(int& error_code) = 0;
+  // Legacy: the connector's DPMS back on before the modeset that follows (atomic: ACTIVE=1 is part of
+  // every modeset). False with errno's code.
+  virtual bool power_on(int& error_code) {
+    error_code = 0;
+    return true;
+  }
+  // Whether the driven CRTC is on, as the kernel has it (atomic: its ACTIVE property; legacy: the
+  // connector's DPMS): what the log and the vm tier check a power change by. None where unreadable.
+  virtual std::optional<bool> powered() const = 0;
   // Queues `fb` for the next vblank; its page-flip event carries `sequence` as user data.
   virtual bool flip(std::uint32_t fb, std::uint64_t sequence, int& error_code) = 0;
   // The CRTC the last successful modeset drove, for a kind that takes over from this one.

@@ -1,6 +1,7 @@
 // Legacy modesetting: drmModeSetCrtc for a mode, drmModePageFlip for each frame. What drivers
 // without atomic support take, and what --drm-atomic no chooses.
 #include "kms_commit.h"
+#include "kms_device.h"
 
 #include <xf86drm.h>
 
@@ -41,9 +42,28 @@ class LegacyCommit final : public Commit {
     return result == 0;
   }
 
+  bool power_off(int& error_code) override { return set_dpms(DRM_MODE_DPMS_OFF, error_code); }
+  bool power_on(int& error_code) override { return set_dpms(DRM_MODE_DPMS_ON, error_code); }
+  std::optional<bool> powered() const override {
+    constexpr std::uint64_t kUnread = ~std::uint64_t{0};
+    const std::uint64_t dpms = property_value(fd_, target_.connector, DRM_MODE_OBJECT_CONNECTOR, "DPMS", kUnread);
+    return dpms == kUnread ? std::nullopt : std::optional<bool>(dpms == DRM_MODE_DPMS_ON);
+  }
+
   std::uint32_t driven_crtc() const override { return driven_crtc_; }
 
  private:
+  bool set_dpms(std::uint64_t level, int& error_code) {
+    const std::uint32_t dpms = property_id(fd_, target_.connector, DRM_MODE_OBJECT_CONNECTOR, "DPMS");
+    if (dpms == 0) {
+      error_code = ENOTSUP;  // a connector without the property cannot be switched off this way
+      return false;
+    }
+    const int result = drmModeConnectorSetProperty(fd_, target_.connector, dpms, level);
+    error_code = result == 0 ? 0 : errno;
+    return result == 0;
+  }
+
   int fd_;
   Target target_;
   std::uint32_t driven_crtc_;

@@ -177,12 +177,51 @@ bool KmsPlatform::wait_for_flip(int timeout_ms) {
   return !flip_pending_;
 }
 
+bool KmsPlatform::set_display_power(bool on, std::string& state, std::string& error) {
+  if (on == !powered_off_) {
+    state = std::string("already ") + (on ? "on" : "off");
+    return true;
+  }
+  powered_off_ = !on;
+  // Without a display the change waits: off, nothing is set when one comes; on, the modeset that
+  // a display's arrival makes anyway shows it.
+  if (!presenting_ || !commit_) {
+    state = "no display to switch (" + reason_ + ")";
+    return true;
+  }
+  settle_flip();
+  int code = 0;
+  if (on) {
+    // The next present() sets the mode, which switches the CRTC on (atomic: ACTIVE=1 in the same commit).
+    needs_modeset_ = true;
+    if (!commit_->power_on(code)) {
+      error = "kms: switching " + connector_.name + " on (DPMS) failed (" + base::errno_text(code) + ")";
+      return false;
+    }
+    state = connector_.name + ": on at the next frame's modeset";
+    return true;
+  }
+  if (!commit_->power_off(code)) {
+    powered_off_ = false;
+    error = "kms: switching " + connector_.name + " off failed (" + base::errno_text(code) + ")";
+    return false;
+  }
+  const std::optional<bool> powered = commit_->powered();
+  // Read back from the kernel, not taken from the commit's success.
+  const bool atomic = commit_->kind().modesetting == "atomic";
+  state = connector_.name + (atomic ? " CRTC " + std::to_string(target_.crtc) + " ACTIVE=" : " DPMS=") +
+          (!powered ? std::string("unreadable")
+           : atomic ? (*powered ? "1" : "0")
+                    : (*powered ? "on" : "off"));
+  return true;
+}
+
 void KmsPlatform::settle_flip() {
   if (flip_pending_ && !wait_for_flip(kFlipTimeoutMs)) abandon_flip();
 }
 
 bool KmsPlatform::present() {
-  if (!presenting_) return true;
+  if (!presenting_ || powered_off_) return true;
   gbm_bo* bo = surface_->swap(last_error_);
   if (bo == nullptr) return false;
   std::string error;

@@ -46,6 +46,7 @@ class KmsPlatform final : public Platform {
   int poll_interval_ms() const override { return 100; }
   std::string last_error() const override { return last_error_; }
   bool capture_scanout(std::vector<std::uint8_t>& rgba, Size& size, std::string& error) override;
+  bool set_display_power(bool on, std::string& state, std::string& error) override;
 
  private:
   using SteadyClock = std::chrono::steady_clock;
@@ -95,6 +96,7 @@ class KmsPlatform final : public Platform {
   Target target_;
 
   bool presenting_ = false, needs_modeset_ = true, flip_pending_ = false;
+  bool powered_off_ = false;  // set_display_power(false): present() shows nothing until it is on
   std::uint64_t flip_sequence_ = 1;
   int flip_timeouts_ = 0;  // in a row: reset only when a flip's event arrives
   std::string reason_ = "no display", last_error_;

@@ -29,16 +29,23 @@ struct PlayOptions {
   std::string out_dir;           // headless: write every frame as DIR/frame-NNNNNN.png
   double fps = 0.0;              // pace frames and the playlist clock; 0: as fast as possible, 1/30 s a frame
   std::string board_file;
-  std::string hal;                 // "linux", "mock" or empty (linux with a board file, else mock)
-  std::string buttons_script;      // mock buttons: `t_ms BUTTON press|release` lines
-  std::string status_file;         // overrides the board's
-  std::string control;             // --control: the control socket's path, overriding the board's; "off": none
-  std::string metrics_file;        // --metrics: Prometheus textfile-collector file, overriding the board's
-  std::string log_file;            // a line per frame: frame, item, state, leds, actions, times, memory (tests, benchmarks)
-  std::string camera_script;       // mock camera: `t_ms unplug|replug` lines (tests)
-  std::string shader_cache;        // --shader-cache: a folder, "off", or empty for the default (app/src/shader_cache.h)
+  std::string hal;             // "linux", "mock" or empty (linux with a board file, else mock)
+  std::string buttons_script;  // mock buttons: `t_ms BUTTON press|release` lines
+  std::string status_file;     // overrides the board's
+  std::string control;         // --control: the control socket's path, overriding the board's; "off": none
+  std::string metrics_file;    // --metrics: Prometheus textfile-collector file, overriding the board's
+  std::string log_file;        // a line per frame: frame, item, state, leds, actions, times, memory (tests, benchmarks)
+  std::string camera_script;   // mock camera: `t_ms unplug|replug` lines (tests)
+  std::string shader_cache;    // --shader-cache: a folder, "off", or empty for the default (app/src/shader_cache.h)
+  // --start-time: the wall-clock time (Unix seconds) the run starts at, for previews and tests of
+  // opening hours and wallclock playlists; negative: now.
+  double start_time_s = -1.0;
   render::FrameSettings settings;  // the command line's settings; a playlist item's `ao` overrides them
 };
+
+// --start-time's value: RFC 3339 ("2026-12-07T17:59:30Z", "2026-12-07T18:59:30+01:00") or Unix
+// seconds, as Unix seconds. False with what was expected.
+bool parse_start_time(const std::string& text, double& unix_s, std::string& error);
 
 // Returns 0 after a clean stop (SIGTERM, SIGINT, --frames, the end of a playlist without loop),
 // 1 for bad input found before the first frame (or a --drm-writeback capture that failed), 2 when the platform could not be made,

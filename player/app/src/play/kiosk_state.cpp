@@ -18,6 +18,8 @@ std::string_view name(State state) {
       return "error";
     case State::no_display:
       return "no display";
+    case State::closed:
+      return "closed";
   }
   return "?";
 }
@@ -43,6 +45,9 @@ KioskState::LedPlan led_plan(State state, bool warning, bool check_failed) {
     case State::no_display:
       plan.status = hal::LedPattern::blink_slow;
       break;
+    case State::closed:
+      plan.status = hal::LedPattern::standby;
+      break;
   }
   if (state != State::error)
     plan.error = check_failed ? hal::LedPattern::blink_fast : warning ? hal::LedPattern::blink_slow : hal::LedPattern::off;
@@ -65,6 +70,10 @@ bool KioskState::display_lost() {
   return change(state_, State::no_display);
 }
 
+bool KioskState::closed() {
+  return change(state_, State::closed);
+}
+
 bool KioskState::frame_drawn(Shown shown, bool paused) {
   State to = State::playing;
   switch (shown) {
@@ -82,7 +91,7 @@ bool KioskState::frame_drawn(Shown shown, bool paused) {
 }
 
 bool KioskState::stopped() {
-  if (state_ == State::error || state_ == State::no_display) return false;
+  if (state_ == State::error || state_ == State::no_display || state_ == State::closed) return false;
   return change(state_, State::playing);
 }
 

@@ -13,8 +13,9 @@ namespace app {
 class KioskState {
  public:
   // no_display: the platform has no display to show frames on (none connected, or another process
-  // holds it); the playlist clock runs on and nothing is drawn.
-  enum class State : std::uint8_t { starting, loading, playing, paused, error, no_display };
+  // holds it); the playlist clock runs on and nothing is drawn. closed: outside the opening hours
+  // (or `player ctl display off`): nothing is drawn and the display is off, as intended.
+  enum class State : std::uint8_t { starting, loading, playing, paused, error, no_display, closed };
   // What a drawn frame showed: no item can play (every scene failed), the item's scene is still on
   // its way to the GPU, or the item's scene.
   enum class Shown : std::uint8_t { nothing_playable, loading, scene };
@@ -31,11 +32,14 @@ class KioskState {
   // Transitions; each returns true when the state changed, so the status goes out at once.
   // The display went away (or was never there at start): no display, whatever was before.
   bool display_lost();
+  // The opening hours closed (or a command switched the display off): closed, whatever was before,
+  // until a frame is drawn again.
+  bool closed();
   // A frame was drawn showing `shown`, with the playlist clock `paused` (a button): playing, paused
   // (only a scene is paused), loading or error. A display that came back leaves no display here.
   bool frame_drawn(Shown shown, bool paused);
   // The player stops: a run that ended starting, loading or paused reports playing (what it did);
-  // error and no display stay, since they are what a monitor must still see.
+  // error, no display and closed stay, since they are what a monitor must still see.
   bool stopped();
 
   // Warnings, which only the error LED shows.

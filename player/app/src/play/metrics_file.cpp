@@ -100,8 +100,12 @@ std::string format_metrics(const Metrics& m) {
   }
   family(out, "ssao_player_resident_memory_bytes", "gauge", "The player's resident memory.");
   sample(out, "ssao_player_resident_memory_bytes", "", static_cast<double>(m.resident_bytes));
-  family(out, "ssao_player_display_connected", "gauge", "Whether a display shows the frames (1) or none does (0).");
+  family(out, "ssao_player_display_connected", "gauge",
+         "Whether a display is there to show the frames (1) or none is (0); switched off while closed, it is still there.");
   sample(out, "ssao_player_display_connected", "", m.display_connected ? 1 : 0);
+  family(out, "ssao_player_open", "gauge",
+         "Whether the board's opening hours (and a display on|off command) have the display on (1) or off (0).");
+  sample(out, "ssao_player_open", "", m.open ? 1 : 0);
   family(out, "ssao_player_gpu_resets_total", "counter", "GPU contexts lost and made anew since the start.");
   sample(out, "ssao_player_gpu_resets_total", "", static_cast<double>(m.gpu_resets));
   return out;

@@ -36,11 +36,14 @@ struct Metrics {
   std::optional<double> scene_load_seconds;  // the last scene loaded, from request to ready
   std::uint64_t resident_bytes = 0;
   bool display_connected = false;
+  bool open = true;  // within the board's opening hours (always, without a [schedule])
   std::uint64_t gpu_resets = 0;
 };
 
-// The states ssao_player_state{state="..."} lists, one of them 1: KioskState's names.
-inline constexpr std::array<std::string_view, 6> kStates = {"starting", "loading", "playing", "paused", "error", "no_display"};
+// The states ssao_player_state{state="..."} lists, one of them 1: KioskState's states, in its order,
+// named as label values are (no_display for "no display").
+inline constexpr std::array<std::string_view, 7> kStates = {"starting", "loading",    "playing", "paused",
+                                                            "error",    "no_display", "closed"};
 
 // The exposition format (text 0.0.4), HELP and TYPE for each family.
 std::string format_metrics(const Metrics& metrics);

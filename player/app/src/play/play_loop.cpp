@@ -48,6 +48,7 @@ PlayLoop::PlayLoop(const PlayPieces& pieces, std::string playlist_path, std::sha
     : p_(pieces),
       playlist_path_(std::move(playlist_path)),
       playlist_(std::move(playlist)),
+      schedule_(pieces.opening_hours),
       frame_(frames),
       scene_shown_(frames > 0) {}
 
@@ -133,10 +134,12 @@ PlayLoop::Next PlayLoop::drain_platform(bool& closed) {
         p_.out << "display: " << p_.platform.not_presenting_reason() << " at " << p_.clock.now()
                << " s; the playlist plays on unseen\n"
                << std::flush;
-        p_.kiosk.display_lost();
+        p_.status.set_display_connected(false);
+        if (schedule_.on()) p_.kiosk.display_lost();  // closed stays closed: the display was to be off anyway
         update_status(true);
         break;
       case platform::EventType::display_found:
+        p_.status.set_display_connected(true);
         p_.out << "display: " << p_.platform.description() << " at " << p_.clock.now() << " s\n" << std::flush;
         display_found_s_ = p_.clock.now();
         p_.drawer.configure_again();
@@ -237,8 +240,15 @@ std::string PlayLoop::command(const control::Command& command, double now) {
       return "ok: item " + std::to_string(command.item);
     }
     case Verb::screenshot:
+      if (!schedule_.on()) return "error: the display is off (" + schedule_.describe() + "): no frame is drawn";
       screenshot_wanted_ = true;
       return {};  // answered once the next frame is drawn (show_frame)
+    case Verb::display: {
+      p_.status.note_action(command.display_on ? "display:on" : "display:off");
+      std::string reply = schedule_.command(command.display_on);
+      follow_schedule(now);
+      return reply;
+    }
   }
   return "error: unknown command";
 }
@@ -285,6 +295,38 @@ void PlayLoop::play_unseen(double now) {
   update_status(false);
 }
 
+void PlayLoop::follow_schedule(double now) {
+  if (!schedule_.update(p_.clock.wall_start() + now, p_.clock.real_seconds())) return;
+  const bool on = schedule_.on();
+  std::string state, error;
+  if (!p_.platform.set_display_power(on, state, error)) p_.status.report(ErrorKind::display, error);
+  p_.out << "schedule: " << schedule_.describe() << "; display " << (on ? "on" : "off") << " (" << state << ") at " << now
+         << " s\n"
+         << std::flush;
+  p_.status.set_open(on);
+  const bool opening = on && closed_;
+  closed_ = !on;
+  if (!on) {
+    screenshot_wanted_ = false;
+    if (p_.control.answers_pending()) p_.control.answer_later("error: the display was switched off before a frame was drawn");
+    p_.kiosk.closed();
+  } else if (opening) {
+    // What a display that slept all night shows is checked once it shows frames again.
+    if (p_.check.has_camera()) p_.check.request();
+    if (!p_.platform.presenting()) p_.kiosk.display_lost();
+  }
+  update_status(true);
+}
+
+void PlayLoop::stay_closed(double now) {
+  const playback::Cue cue = timeline_->at(now, p_.clock.wall_start() + now);
+  last_item_ = cue.item;
+  load_for(cue);
+  // Alive and waiting, which is all the watchdog checks: a kiosk closed at start still starts.
+  p_.status.service().frame_presented(p_.clock.monotonic());
+  update_status(false);
+}
+
 playback::Cue PlayLoop::cue_at(double now) {
   playback::Cue cue = timeline_->at(now, p_.clock.wall_start() + now);
   load_for(cue);
@@ -324,7 +366,9 @@ void PlayLoop::draw(const playback::Cue& cue) {
 void PlayLoop::wait_for_events(double next_frame) {
   // It sleeps only until the next frame is due.
   int timeout_ms = 0;
-  if (!p_.platform.presenting())
+  if (!schedule_.on())
+    timeout_ms = p_.clock.manual() ? 0 : kClosedPollMs;
+  else if (!p_.platform.presenting())
     timeout_ms = p_.platform.poll_interval_ms();
   else if (!p_.clock.manual() && p_.options.fps > 0.0)
     timeout_ms = std::max(0, static_cast<int>((next_frame - p_.clock.now()) * 1000.0));
@@ -429,6 +473,7 @@ int PlayLoop::run() {
   p_.scenes.set_playlist(*playlist_, nullptr);
   timeline_ = std::make_unique<playback::Timeline>(*playlist_, 0.0, p_.clock.wall_start());
   watch_content();
+  p_.status.set_display_connected(p_.platform.presenting());
   update_status(true);
 
   bool stop = false;
@@ -444,6 +489,13 @@ int PlayLoop::run() {
     read_buttons(now);
     serve_control(now);
     p_.devices.status->update();
+    follow_schedule(now);
+    if (!schedule_.on()) {
+      stay_closed(now);
+      // A reproducible run (a preview of the hours) passes the night in steps of a second, without waiting.
+      if (p_.clock.manual()) p_.clock.advance(kClosedManualStep);
+      continue;
+    }
     if (!p_.platform.presenting()) {
       play_unseen(now);
       continue;

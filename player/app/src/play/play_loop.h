@@ -10,6 +10,7 @@
 #include "play/frame_drawer.h"
 #include "play/gpu_recovery.h"
 #include "play/kiosk_state.h"
+#include "play/opening_schedule.h"
 #include "play/play_clock.h"
 #include "play/scene_cache.h"
 #include "play/self_check_session.h"
@@ -43,7 +44,8 @@ struct PlayPieces {
   FrameDrawer& drawer;
   SceneCache& scenes;
   SelfCheckSession& check;
-  control::Server& control;  // closed when no socket was asked for
+  control::Server& control;                // closed when no socket was asked for
+  const hal::OpeningHours* opening_hours;  // the board's [schedule]; null: always open
 };
 
 class PlayLoop {
@@ -58,6 +60,10 @@ class PlayLoop {
 
  private:
   enum class Next : std::uint8_t { go_on, stop, remake };
+  // Closed, the loop wakes this often (besides its events) to look at the time: a second is as close
+  // as anyone watches an opening.
+  static constexpr int kClosedPollMs = 1000;
+  static constexpr double kClosedManualStep = 1.0;
 
   void update_status(bool force);
   void apply_playlist(std::shared_ptr<const playback::Playlist> playlist, double now);
@@ -78,6 +84,11 @@ class PlayLoop {
   // Asks for the cue's scenes and makes this frame's share of the uploads.
   void load_for(const playback::Cue& cue);
   void play_unseen(double now);
+  // The opening hours (or a display command) switch the display on or off: the platform switches
+  // it, the state says closed, and opening runs a self-check.
+  void follow_schedule(double now);
+  // Closed: the clock runs on and the scene of the hour loads, nothing is drawn.
+  void stay_closed(double now);
   playback::Cue cue_at(double now);
   void draw(const playback::Cue& cue);
   // Draws, writes and presents a frame. An exit code to return at once, or none; `stop`: this
@@ -94,6 +105,8 @@ class PlayLoop {
   std::vector<ContentWatch::Change> changes_;
   std::vector<hal::Action> actions_;
   std::vector<int> control_fds_;
+  OpeningSchedule schedule_;
+  bool closed_ = false;             // the display is off by the schedule or a command
   bool screenshot_wanted_ = false;  // `player ctl screenshot`: the next frame drawn, written beside the socket
   long long frame_;
   int last_item_ = -1;

@@ -36,6 +36,7 @@ class SelfCheckSession {
 
   // A check asked for (SIGUSR1, the check button): it starts with the next frame.
   void request() { requested_ = true; }
+  bool has_camera() const { return camera_ != nullptr; }
   // Starts a check when one was asked for or the interval is up, from the frame last drawn into
   // `present` (width x height): that frame with the markers is what the screen holds.
   void start_when_due(double now, const render::PresentTarget& present, int width, int height);

@@ -95,13 +95,13 @@ void StatusReporter::publish(hal::StatusReport report, int item) {
     err_ << "warning: " << error << "\n";
   }
   if (metrics_path_.empty()) return;
-  metrics_.state = kiosk_.name();
+  static_assert(kStates.size() == static_cast<std::size_t>(KioskState::State::closed) + 1, "a name for every state");
+  metrics_.state = kStates[static_cast<std::size_t>(kiosk_.state())];
   metrics_.item = item;
   metrics_.scene = report.item;
   metrics_.frames = report.frames;
   metrics_.frame_seconds_p50 = report.frame_ms_p50 / 1000.0;
   metrics_.frame_seconds_p99 = report.frame_ms_p99 / 1000.0;
-  metrics_.display_connected = kiosk_.state() != KioskState::State::no_display;
   metrics_.resident_bytes = static_cast<std::uint64_t>(resident_kib()) * 1024u;
   if (report.self_check) {
     // The verdict's time is on the devices' clock; its age on that clock dates it in Unix time.

@@ -68,6 +68,11 @@ class StatusReporter {
   // `base`: the figures that do not change while the player runs (version, platform, renderer, start).
   void open_metrics(const std::string& path, const Metrics& base);
   void gpu_reset_survived(std::uint64_t resets) { metrics_.gpu_resets = resets; }
+  // Whether a display is there (platform::Platform::presenting, display lost and found), whatever the
+  // state: a display switched off for the night is still connected.
+  void set_display_connected(bool connected) { metrics_.display_connected = connected; }
+  // Within the opening hours, or switched on by a command.
+  void set_open(bool open) { metrics_.open = open; }
   void scene_loaded(double seconds) { metrics_.scene_load_seconds = seconds; }
 
   // --log: the file (appended to when a session plays on after a GPU reset).

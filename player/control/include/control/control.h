@@ -18,15 +18,16 @@ inline constexpr std::string_view kDefaultPath = "/run/ssao-player/control";
 // Members of this group may command a player besides root and the player's own user.
 inline constexpr std::string_view kControlGroup = "ssao-player-control";
 
-enum class Verb : std::uint8_t { next, previous, pause, resume, check, reload, restart, item, screenshot };
+enum class Verb : std::uint8_t { next, previous, pause, resume, check, reload, restart, item, screenshot, display };
 
 struct Command {
   Verb verb = Verb::next;
-  int item = -1;  // `item N`: the playlist's item N, counted from 0 as in the status file
+  int item = -1;           // `item N`: the playlist's item N, counted from 0 as in the status file
+  bool display_on = true;  // `display on|off`
 };
 
 std::string_view to_string(Verb verb);
-// "next, previous, ..., item N": for errors and --help.
+// "next, previous, ..., item N, screenshot, display on|off": for errors and --help.
 std::string verbs_text();
 // One message as a command. False and why (the message shown as it came, escaped).
 bool parse_command(std::string_view message, Command& out, std::string& error);

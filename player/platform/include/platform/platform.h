@@ -82,6 +82,16 @@ class Platform {
   virtual bool presenting() const { return true; }
   virtual std::string not_presenting_reason() const { return {}; }
   virtual int poll_interval_ms() const { return 100; }
+  // Switches the display off (outside opening hours) or on again. Off: present() shows nothing until
+  // it is on; kms switches the CRTC off (atomic ACTIVE, legacy DPMS) and sets the mode again when on.
+  // `state` says what the hardware reports afterwards, for the log ("CRTC 37 ACTIVE=0"). Platforms
+  // without a display of their own (a window, a pbuffer) have nothing to switch: true and nothing done.
+  virtual bool set_display_power(bool on, std::string& state, std::string& error) {
+    (void)on;
+    (void)error;
+    state = std::string(name()) + ": no display of its own to switch";
+    return true;
+  }
   // The last error of present(): why it returned false.
   virtual std::string last_error() const { return {}; }
 

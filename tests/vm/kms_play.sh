@@ -101,7 +101,10 @@ display_off_and_on() {  # NAME EXPECTED_OFF_STATE [PLAY OPTIONS...]
   rm -f "$out/$name.log"
   "$player" "${common[@]}" "$@" --control "$socket" --log "$out/$name.log" >"$out/$name.out" 2>&1 &
   pid=$!
-  wait_log() { for _ in $(seq 1 3000); do [ "$(wc -l <"$out/$name.log" 2>/dev/null || echo 0)" -ge "$1" ] && return 0; sleep 0.1; done; return 1; }
+  wait_log() {
+    for _ in $(seq 1 3000); do [ "$({ wc -l <"$out/$name.log"; } 2>/dev/null || echo 0)" -ge "$1" ] && return 0; sleep 0.1; done
+    return 1
+  }
   wait_log 3 || { kill "$pid"; cat "$out/$name.out"; fail "$name: no frames within 300 s"; }
   "$player" ctl --control "$socket" --timeout 60 display off || { kill "$pid"; fail "$name: display off was refused"; }
   grep -q "^schedule: off by command; display off (Virtual-1 $expected)" "$out/$name.out" ||
@@ -114,7 +117,8 @@ display_off_and_on() {  # NAME EXPECTED_OFF_STATE [PLAY OPTIONS...]
   wait_log $((before + 3)) || { kill "$pid"; cat "$out/$name.out"; fail "$name: no frames after display on"; }
   kill -TERM "$pid"
   wait "$pid" || { cat "$out/$name.out"; fail "$name: the player exited with $? on SIGTERM"; }
-  grep -q "warning\|error" "$out/$name.out" && { cat "$out/$name.out"; fail "$name: warnings or errors"; }
+  grep -q "^warning\|^error" "$out/$name.out" && { cat "$out/$name.out"; fail "$name: warnings or errors"; }
+  grep -q "^played [0-9]* frames, 0 error(s)" "$out/$name.out" || { cat "$out/$name.out"; fail "$name: errors while playing"; }
 }
 echo "== display off and on (atomic)"
 display_off_and_on power-atomic "CRTC [0-9]* ACTIVE=0" --drm-writeback "$out/power-scanout.png"

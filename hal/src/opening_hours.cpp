@@ -30,7 +30,8 @@ int minute_of(std::string_view text) {
   if (text.size() != 5 || text[2] != ':') return -1;
   int hours = 0, minutes = 0;
   const char* begin = text.data();
-  if (std::from_chars(begin, begin + 2, hours).ptr != begin + 2 || std::from_chars(begin + 3, begin + 5, minutes).ptr != begin + 5)
+  if (std::from_chars(begin, begin + 2, hours).ptr != begin + 2 ||
+      std::from_chars(begin + 3, begin + 5, minutes).ptr != begin + 5)
     return -1;
   if (hours > 24 || minutes > 59 || (hours == 24 && minutes != 0)) return -1;
   return hours * 60 + minutes;
@@ -56,8 +57,8 @@ bool parse_opening_range(std::string_view text, OpeningRange& out, std::string& 
     const int first = day_index(item.substr(0, dash));
     const int last = dash == std::string_view::npos ? first : day_index(item.substr(dash + 1));
     if (first < 0 || last < 0 || (comma != std::string_view::npos && days.empty())) {
-      error = "days as Mo Tu We Th Fr Sa Su, a span (Mo-Fr) or a list (Mo,We,Sa-Su) before the hours, not '" +
-              std::string(item) + "'";
+      error = "days as Mo Tu We Th Fr Sa Su, a span (Mo-Fr) or a list (Mo,We,Sa-Su) before the hours, not '" + std::string(item) +
+              "'";
       return false;
     }
     for (int d = first;; d = (d + 1) % 7) {  // a span that wraps, Fr-Mo, runs through the weekend

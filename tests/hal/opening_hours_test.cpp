@@ -179,12 +179,14 @@ TEST(OpeningHours, TheBoardFilesScheduleErrorsNamePlaceFieldAndWhatWasExpected) 
             "10-16'");
   EXPECT_EQ(board_error("[schedule]\nopen = [9]\n"),
             "b.toml:2:9: schedule.open[0]: expected a string such as \"Mo-Fr 09:00-18:00\", got 9");
-  EXPECT_EQ(board_error("[schedule]\nopen = []\n"),
-            "b.toml:2:8: schedule.open: expected a list of weekly ranges such as [\"Mo-Fr 09:00-18:00\", \"Sa 10:00-16:00\"], got "
-            "array");
-  EXPECT_EQ(board_error("[schedule]\ntimezone = \"UTC\"\n"),
-            "b.toml:1:1: schedule.open: expected a list of weekly ranges such as [\"Mo-Fr 09:00-18:00\", \"Sa 10:00-16:00\"], got "
-            "nothing");
+  EXPECT_EQ(
+      board_error("[schedule]\nopen = []\n"),
+      "b.toml:2:8: schedule.open: expected a list of weekly ranges such as [\"Mo-Fr 09:00-18:00\", \"Sa 10:00-16:00\"], got "
+      "array");
+  EXPECT_EQ(
+      board_error("[schedule]\ntimezone = \"UTC\"\n"),
+      "b.toml:1:1: schedule.open: expected a list of weekly ranges such as [\"Mo-Fr 09:00-18:00\", \"Sa 10:00-16:00\"], got "
+      "nothing");
   EXPECT_EQ(board_error("[schedule]\nopen = [\"Mo 09:00-10:00\"]\ntimezone = \"Mars/Olympus\"\n"),
             "b.toml:3:12: schedule.timezone: expected an IANA time zone such as \"Europe/Budapest\" (none is called "
             "'Mars/Olympus'), got 'Mars/Olympus'");

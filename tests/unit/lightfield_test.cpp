@@ -619,6 +619,9 @@ TEST(LightfieldDisplayFile, CalibrationRangesHoldAtTheirEnds) {
   EXPECT_TRUE(accepted({{"slope", "-1e-6"}, {"pitch", "1e6"}}, c));
   EXPECT_EQ(c.slope, -1e-6);
   EXPECT_EQ(refused({{"pitch", "0"}}), "v.json: pitch: expected an object {\"value\": number in (0, 1e6]}, got \"value\": 0");
+  // The range is open at 0 only: a coarse lens sheet has less than one lenticule per inch.
+  EXPECT_TRUE(accepted({{"pitch", "0.25"}}, c));
+  EXPECT_EQ(c.pitch, 0.25);
   EXPECT_TRUE(accepted({{"center", "1e6"}}, c));
   EXPECT_TRUE(accepted({{"center", "-1e6"}}, c));
   EXPECT_EQ(c.center, -1e6);

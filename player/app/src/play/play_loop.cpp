@@ -310,10 +310,10 @@ void PlayLoop::follow_schedule(double now) {
     screenshot_wanted_ = false;
     if (p_.control.answers_pending()) p_.control.answer_later("error: the display was switched off before a frame was drawn");
     p_.kiosk.closed();
-  } else if (opening) {
-    // What a display that slept all night shows is checked once it shows frames again.
-    if (p_.check.has_camera()) p_.check.request();
-    if (!p_.platform.presenting()) p_.kiosk.display_lost();
+  } else if (opening && p_.check.has_camera()) {
+    // What a display that slept all night shows is checked once it shows frames again. (Without a
+    // display, the loop's next pass says no display, as for any pass.)
+    p_.check.request();
   }
   update_status(true);
 }

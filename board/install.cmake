@@ -14,15 +14,17 @@ set(board_staging ${PROJECT_BINARY_DIR}/board-install)
 # The unit names the binary and the demo playlist by their installed paths, written at install time
 # from the prefix in effect then: cpack installs into /usr whatever prefix the build tree has, and
 # `cmake --install --prefix P` gets a unit that runs P/bin/player.
-install(CODE "
-  file(READ [[${board_source}/ssao-player.service]] unit)
-  string(REPLACE /usr/bin/player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}/player\" unit \"\${unit}\")
-  string(REPLACE /usr/share/ssao-player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/ssao-player\" unit \"\${unit}\")
-  string(REPLACE /usr/share/doc/ssao-player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/doc/ssao-player\" unit \"\${unit}\")
-  file(WRITE [[${board_staging}/ssao-player.service]] \"\${unit}\")
-" COMPONENT player)
+foreach(unit_name ssao-player.service ssao-player-fleet.service)
+  install(CODE "
+    file(READ [[${board_source}/${unit_name}]] unit)
+    string(REPLACE /usr/bin/player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}/player\" unit \"\${unit}\")
+    string(REPLACE /usr/share/ssao-player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/ssao-player\" unit \"\${unit}\")
+    string(REPLACE /usr/share/doc/ssao-player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/doc/ssao-player\" unit \"\${unit}\")
+    file(WRITE [[${board_staging}/${unit_name}]] \"\${unit}\")
+  " COMPONENT player)
+endforeach()
 # systemd, sysusers and udev search <prefix>/lib/... for both /usr and /usr/local (not the multiarch libdir).
-install(FILES ${board_staging}/ssao-player.service DESTINATION lib/systemd/system COMPONENT player)
+install(FILES ${board_staging}/ssao-player.service ${board_staging}/ssao-player-fleet.service DESTINATION lib/systemd/system COMPONENT player)
 install(FILES ${board_source}/ssao-player.sysusers DESTINATION lib/sysusers.d RENAME ssao-player.conf COMPONENT player)
 install(FILES ${board_source}/60-ssao-player-gpio.rules DESTINATION lib/udev/rules.d COMPONENT player)
 
@@ -37,6 +39,8 @@ set(board_conffiles /etc/default/ssao-player /etc/ssao-player/board.toml)
 install(FILES ${board_source}/raspberry-pi-4.toml ${board_source}/raspberry-pi-5.toml ${board_source}/mock.toml
               ${board_source}/buttons.script
         DESTINATION ${CMAKE_INSTALL_DATADIR}/ssao-player/board COMPONENT player)
+# The fleet agent's example configuration; the unit starts only once /etc/ssao-player/fleet.toml exists.
+install(FILES ${board_source}/fleet.toml DESTINATION ${CMAKE_INSTALL_DATADIR}/ssao-player COMPONENT player)
 install(DIRECTORY ${board_source}/displays DESTINATION ${CMAKE_INSTALL_DATADIR}/ssao-player/board COMPONENT player)
 install(FILES ${board_source}/demo/playlist.toml DESTINATION ${CMAKE_INSTALL_DATADIR}/ssao-player/demo COMPONENT player)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/ssao-player COMPONENT player)

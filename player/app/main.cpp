@@ -5,6 +5,7 @@
 #include "app/render_command.h"
 #include "base/parse.h"
 #include "control/control.h"
+#include "fleet/fleet.h"
 #include "hal/devices.h"
 #include "hal/hal_test.h"
 #include "platform/platform.h"
@@ -157,6 +158,22 @@ int main(int argc, char** argv) {
   ctl_cmd->add_option("--control", ctl.control, "The player's control socket")->capture_default_str();
   ctl_cmd->add_option("--timeout", ctl.timeout_s, "Seconds to wait for the reply")->capture_default_str();
 
+  fleet::Options fleet_options;
+  auto* fleet_cmd = cli.add_subcommand(
+      "fleet",
+      "Carry this player's status to an MQTT broker (with Home Assistant discovery) and the broker's commands to its control "
+      "socket, until stopped (docs/fleet.md)");
+  fleet_cmd->add_option("--config", fleet_options.config, "The agent's configuration (TOML)")->capture_default_str();
+  fleet_cmd->add_flag("--check", fleet_options.check,
+                      "Check the configuration (with its password and CA files), print what the agent would do, and exit");
+  fleet_cmd->add_flag("--remove", fleet_options.remove,
+                      "Withdraw this player from the broker (Home Assistant's device, state, availability) and exit");
+  fleet_cmd
+      ->add_option("--duration", fleet_options.duration_s,
+                   "Stop after this many seconds (0: run until SIGTERM or SIGINT; with --remove: how long to try)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+
   app::PlayOptions play;
   std::string play_size = "1024x768";
   auto* play_cmd =
@@ -276,5 +293,6 @@ int main(int argc, char** argv) {
   if (info_cmd->parsed()) return app::run_info(info_platform, info_shader_cache, std::cout, std::cerr);
   if (check_cmd->parsed()) return app::run_check(check_scenes, std::cout, std::cerr);
   if (ctl_cmd->parsed()) return app::run_ctl(ctl, std::cout, std::cerr);
+  if (fleet_cmd->parsed()) return fleet::run_fleet(fleet_options, PLAYER_VERSION, std::cout, std::cerr);
   return 2;
 }

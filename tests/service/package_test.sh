@@ -44,6 +44,8 @@ dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|; s|/$||' | grep -v '^$
   echo /usr/bin/player
   echo /usr/lib/ssao-player/libssao-player-images.so
   echo /usr/lib/systemd/system/ssao-player.service
+  echo /usr/lib/systemd/system/ssao-player-fleet.service
+  echo /usr/share/ssao-player/fleet.toml
   echo /usr/lib/sysusers.d/ssao-player.conf
   echo /usr/lib/udev/rules.d/60-ssao-player-gpio.rules
   echo /usr/share/doc/ssao-player/README.md
@@ -66,7 +68,7 @@ echo "Depends: $depends"
 # Computed from the binary's NEEDED libraries (versioned, as dpkg-shlibdeps writes them), and the
 # systemd that postinst's systemd-sysusers comes from; tzdata for opening hours in a named zone.
 # libopenimageio comes from the image module (/usr/lib/ssao-player), which the player loads on first use.
-for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'libdate-tz3' 'systemd' 'tzdata'; do
+for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'libdate-tz3' 'libmosquitto1' 'systemd' 'tzdata'; do
   case ", $depends," in
     *", $needed"*) ;;
     *) fail "Depends: expected $needed..., got '$depends'" ;;
@@ -91,7 +93,11 @@ for group in video render gpio input; do
   grep -q "^$group:x:[0-9]*:\(.*,\)\?ssao-player\(,.*\)\?$" "$root/etc/group" ||
     fail "$root/etc/group: expected ssao-player in $group, got: $(cat "$root/etc/group")"
 done
-echo "ok: postinst made the user and its groups in the scratch root"
+grep -q '^ssao-player-fleet:x:[0-9]*:[0-9]*:[^:]*:/nonexistent:/usr/sbin/nologin$' "$root/etc/passwd" ||
+  fail "$root/etc/passwd: expected the fleet agent's system user ssao-player-fleet, got: $(cat "$root/etc/passwd")"
+grep -q "^ssao-player-control:x:[0-9]*:\(.*,\)\?ssao-player-fleet\(,.*\)\?$" "$root/etc/group" ||
+  fail "$root/etc/group: expected ssao-player-fleet in ssao-player-control, got: $(cat "$root/etc/group")"
+echo "ok: postinst made the users and their groups in the scratch root"
 
 # The unit as installed: ExecStart names the installed binary, the playlist it plays by default
 # is installed, and systemd-analyze verify has nothing to say.
@@ -101,6 +107,14 @@ exec_start=$(sed -n 's/^ExecStart=\([^ ]*\) .*/\1/p' "$unit")
 playlist=$(sed -n 's/^Environment=PLAYER_PLAYLIST=//p' "$unit")
 [ -f "$root$playlist" ] || fail "$unit: PLAYER_PLAYLIST: $playlist is not in the package"
 "$here/verify_unit.sh" "$unit" "$root$exec_start" "$out/unit"
+"$here/verify_unit.sh" "$root/usr/lib/systemd/system/ssao-player-fleet.service" "$root$exec_start" "$out/fleet-unit"
+# The example fleet configuration is one the agent takes, once its password and CA files exist.
+echo secret > "$out/fleet.password"
+sed "s|/etc/ssao-player/fleet.password|$out/fleet.password|; s|/etc/ssl/certs/fleet-ca.pem|/etc/ssl/certs/ca-certificates.crt|" \
+  "$root/usr/share/ssao-player/fleet.toml" > "$out/fleet.toml"
+"$root$exec_start" fleet --config "$out/fleet.toml" --check > "$out/fleet.log" 2>&1 ||
+  fail "the installed example fleet.toml: $(cat "$out/fleet.log")"
+grep -q "^ok: .*mqtts://broker.example:8883" "$out/fleet.log" || fail "fleet --check: $(cat "$out/fleet.log")"
 
 # The installed player plays the installed demo playlist (headless here), and writes its last frame
 # through the installed image module.

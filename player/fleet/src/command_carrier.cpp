@@ -1,0 +1,84 @@
+#include "command_carrier.h"
+
+#include "base/read_file.h"
+#include "control/control.h"
+#include "mqtt_link.h"
+#include "screenshot.h"
+
+namespace fleet {
+
+CommandCarrier::CommandCarrier(const Config& config) : config_(config), worker_([this] { work(); }) {}
+
+CommandCarrier::~CommandCarrier() {
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  worker_.join();
+}
+
+void CommandCarrier::push(Message received) {
+  {
+    const std::lock_guard lock(mutex_);
+    if (pending_.size() >= MqttLink::kMaxPending) {
+      done_.push_back({pending_.front().topic, pending_.front().payload, pending_.front().topic,
+                       "error: dropped unanswered: more than " + std::to_string(MqttLink::kMaxPending) + " commands waited", {}});
+      pending_.pop_front();
+    }
+    pending_.push_back(std::move(received));
+  }
+  wake_.notify_one();
+}
+
+std::optional<CommandCarrier::Done> CommandCarrier::take() {
+  const std::lock_guard lock(mutex_);
+  if (done_.empty()) return std::nullopt;
+  Done done = std::move(done_.front());
+  done_.pop_front();
+  return done;
+}
+
+void CommandCarrier::work() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return stop_ || !pending_.empty(); });
+    if (stop_) return;
+    const Message received = std::move(pending_.front());
+    pending_.pop_front();
+    lock.unlock();
+    Done done = carry(received);
+    lock.lock();
+    done_.push_back(std::move(done));
+  }
+}
+
+CommandCarrier::Done CommandCarrier::carry(const Message& received) const {
+  Done done{received.topic, received.payload, received.topic, {}, {}};
+  std::string error;
+  if (!command_of(config_, received.topic, received.payload, done.command, error)) {
+    done.command = received.topic;
+    done.reply = "error: " + error;
+    return done;
+  }
+  const bool screenshot = done.command == "screenshot";
+  if (!control::send_command(config_.control, done.command, screenshot ? kScreenshotTimeoutMs : kReplyTimeoutMs, done.reply, error)) {
+    done.reply = "error: " + error;
+    return done;
+  }
+  // "ok: frame N written to PATH": the frame as a JPEG for the screenshot topic.
+  constexpr std::string_view marker = " written to ";
+  const std::size_t at = done.reply.find(marker);
+  if (!screenshot || !control::reply_ok(done.reply) || at == std::string::npos) return done;
+  int width = 0, height = 0;
+  if (!jpeg_within(done.reply.substr(at + marker.size()), static_cast<std::size_t>(config_.screenshot_max_kb) * base::kKiB, done.jpeg,
+                   width, height, error)) {
+    done.jpeg.clear();
+    done.reply = "error: the screenshot cannot be sent: " + error;
+  } else {
+    done.reply += "; sent as a " + std::to_string(width) + "x" + std::to_string(height) + " JPEG";
+  }
+  return done;
+}
+
+}  // namespace fleet

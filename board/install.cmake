@@ -14,7 +14,7 @@ set(board_staging ${PROJECT_BINARY_DIR}/board-install)
 # The unit names the binary and the demo playlist by their installed paths, written at install time
 # from the prefix in effect then: cpack installs into /usr whatever prefix the build tree has, and
 # `cmake --install --prefix P` gets a unit that runs P/bin/player.
-foreach(unit_name ssao-player.service ssao-player-fleet.service)
+foreach(unit_name ssao-player.service ssao-player-fleet.service ssao-player-content.service ssao-player-content.path)
   install(CODE "
     file(READ [[${board_source}/${unit_name}]] unit)
     string(REPLACE /usr/bin/player \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}/player\" unit \"\${unit}\")
@@ -24,7 +24,8 @@ foreach(unit_name ssao-player.service ssao-player-fleet.service)
   " COMPONENT player)
 endforeach()
 # systemd, sysusers and udev search <prefix>/lib/... for both /usr and /usr/local (not the multiarch libdir).
-install(FILES ${board_staging}/ssao-player.service ${board_staging}/ssao-player-fleet.service DESTINATION lib/systemd/system COMPONENT player)
+install(FILES ${board_staging}/ssao-player.service ${board_staging}/ssao-player-fleet.service ${board_staging}/ssao-player-content.service
+              ${board_staging}/ssao-player-content.path DESTINATION lib/systemd/system COMPONENT player)
 install(FILES ${board_source}/ssao-player.sysusers DESTINATION lib/sysusers.d RENAME ssao-player.conf COMPONENT player)
 install(FILES ${board_source}/60-ssao-player-gpio.rules DESTINATION lib/udev/rules.d COMPONENT player)
 

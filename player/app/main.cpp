@@ -1,9 +1,11 @@
 // The player's command line: a thin layer over the app library.
 #include "app/check_command.h"
+#include "app/content_command.h"
 #include "app/ctl_command.h"
 #include "app/play_command.h"
 #include "app/render_command.h"
 #include "base/parse.h"
+#include "content/content.h"
 #include "control/control.h"
 #include "fleet/fleet.h"
 #include "hal/devices.h"
@@ -158,6 +160,33 @@ int main(int argc, char** argv) {
   ctl_cmd->add_option("--control", ctl.control, "The player's control socket")->capture_default_str();
   ctl_cmd->add_option("--timeout", ctl.timeout_s, "Seconds to wait for the reply")->capture_default_str();
 
+  app::ContentOptions content_options;
+  content_options.root = std::string(content::kDefaultRoot);
+  auto* content_cmd = cli.add_subcommand(
+      "content", "Install content bundles as versions, checked before they play; roll back; list (docs/content.md)");
+  content_cmd->require_subcommand(1);
+  auto* install_cmd = content_cmd->add_subcommand(
+      "install", "Check a bundle (a folder or .tar with playlist.toml) with the player's loader, then make it current");
+  install_cmd->add_option("source", content_options.source, "The bundle: a folder, or a .tar (.gz, .xz, .zst) of one")
+      ->required();
+  install_cmd->add_option("--keep", content_options.keep, "Earlier versions kept besides the current one")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  install_cmd->add_option("--max-size", content_options.max_size, "The bundle's size budget, unpacked (e.g. 500M, 4G)")
+      ->capture_default_str();
+  auto* take_cmd = content_cmd->add_subcommand(
+      "take", "Install every bundle (.tar, .tar.gz, ...) waiting in INBOX, oldest first, removing each whatever the outcome");
+  take_cmd->add_option("inbox", content_options.source, "The folder bundles arrive in")->required();
+  take_cmd->add_option("--keep", content_options.keep, "Earlier versions kept besides the current one")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  take_cmd->add_option("--max-size", content_options.max_size, "Each bundle's size budget, unpacked (e.g. 500M, 4G)")
+      ->capture_default_str();
+  content_cmd->add_subcommand("rollback", "Make the version installed before the current one current again");
+  content_cmd->add_subcommand("list", "The installed versions, oldest first; * marks the current one");
+  for (CLI::App* sub : content_cmd->get_subcommands({}))
+    sub->add_option("--root", content_options.root, "The content root (versions/ and the link current)")->capture_default_str();
+
   fleet::Options fleet_options;
   auto* fleet_cmd = cli.add_subcommand(
       "fleet",
@@ -293,6 +322,10 @@ int main(int argc, char** argv) {
   if (info_cmd->parsed()) return app::run_info(info_platform, info_shader_cache, std::cout, std::cerr);
   if (check_cmd->parsed()) return app::run_check(check_scenes, std::cout, std::cerr);
   if (ctl_cmd->parsed()) return app::run_ctl(ctl, std::cout, std::cerr);
+  if (content_cmd->parsed()) {
+    content_options.action = content_cmd->get_subcommands().front()->get_name();
+    return app::run_content(content_options, std::cout, std::cerr);
+  }
   if (fleet_cmd->parsed()) return fleet::run_fleet(fleet_options, PLAYER_VERSION, std::cout, std::cerr);
   return 2;
 }

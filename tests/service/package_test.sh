@@ -45,6 +45,8 @@ dpkg-deb -c "$deb" | awk '{ print $NF }' | sed 's|^\./|/|; s|/$||' | grep -v '^$
   echo /usr/lib/ssao-player/libssao-player-images.so
   echo /usr/lib/systemd/system/ssao-player.service
   echo /usr/lib/systemd/system/ssao-player-fleet.service
+  echo /usr/lib/systemd/system/ssao-player-content.service
+  echo /usr/lib/systemd/system/ssao-player-content.path
   echo /usr/share/ssao-player/fleet.toml
   echo /usr/lib/sysusers.d/ssao-player.conf
   echo /usr/lib/udev/rules.d/60-ssao-player-gpio.rules
@@ -68,7 +70,7 @@ echo "Depends: $depends"
 # Computed from the binary's NEEDED libraries (versioned, as dpkg-shlibdeps writes them), and the
 # systemd that postinst's systemd-sysusers comes from; tzdata for opening hours in a named zone.
 # libopenimageio comes from the image module (/usr/lib/ssao-player), which the player loads on first use.
-for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'libdate-tz3' 'libmosquitto1' 'systemd' 'tzdata'; do
+for needed in 'libc6 (>= ' 'libegl1' 'libgpiod2' 'libsystemd0' 'libstdc++6 (>= ' 'libopenimageio' 'libdate-tz3' 'libmosquitto1' 'libarchive13' 'systemd' 'tzdata'; do
   case ", $depends," in
     *", $needed"*) ;;
     *) fail "Depends: expected $needed..., got '$depends'" ;;
@@ -108,6 +110,12 @@ playlist=$(sed -n 's/^Environment=PLAYER_PLAYLIST=//p' "$unit")
 [ -f "$root$playlist" ] || fail "$unit: PLAYER_PLAYLIST: $playlist is not in the package"
 "$here/verify_unit.sh" "$unit" "$root$exec_start" "$out/unit"
 "$here/verify_unit.sh" "$root/usr/lib/systemd/system/ssao-player-fleet.service" "$root$exec_start" "$out/fleet-unit"
+"$here/verify_unit.sh" "$root/usr/lib/systemd/system/ssao-player-content.service" "$root$exec_start" "$out/content-unit"
+# The path unit beside the service it starts (verify looks for it there).
+cp "$root/usr/lib/systemd/system/ssao-player-content.path" "$out/content-unit/"
+systemd-analyze verify --man=no "$out/content-unit/ssao-player-content.path" > "$out/content-unit/path.log" 2>&1 ||
+  fail "systemd-analyze verify ssao-player-content.path: $(cat "$out/content-unit/path.log")"
+if grep -F ssao-player-content "$out/content-unit/path.log"; then fail "ssao-player-content.path has the complaints above"; fi
 # The example fleet configuration is one the agent takes, once its password and CA files exist.
 echo secret > "$out/fleet.password"
 sed "s|/etc/ssao-player/fleet.password|$out/fleet.password|; s|/etc/ssl/certs/fleet-ca.pem|/etc/ssl/certs/ca-certificates.crt|" \

@@ -69,8 +69,8 @@ TEST(FleetConfig, BrokerAddressesAsPeopleWriteThem) {
   EXPECT_EQ(parsed("broker = \"mqtt://[::1]:1884\"\n").host, "::1");
   EXPECT_EQ(parsed("broker = \"mqtt://[::1]:1884\"\n").port, 1884);
   EXPECT_EQ(parsed("broker = \"mqtt://broker.local:65535/\"\n").port, 65535);
-  for (const char* bad : {"broker.example:1883", "http://broker", "mqtt://", "mqtt://b:0", "mqtt://b:65536", "mqtt://b:",
-                          "mqtt://b:1x", "mqtt://user@b", "mqtt://[::1", "mqtt://[::1]x"})
+  for (const char* bad : {"broker.example:1883", "http://broker", "mqtt://", "mqtt://b:0", "mqtt://b:65536",
+                          "mqtt://b:", "mqtt://b:1x", "mqtt://user@b", "mqtt://[::1", "mqtt://[::1]x"})
     EXPECT_EQ(refusal(std::string("broker = \"") + bad + "\"\n"),
               std::string("fleet.toml:1:10: broker: expected mqtt://HOST[:PORT] or mqtts://HOST[:PORT], got '") + bad + "'");
 }
@@ -80,7 +80,8 @@ TEST(FleetConfig, ErrorsNameTheLineTheKeyAndWhatWasExpected) {
             "fleet.toml:2:19: status_period_s: expected seconds in 0.2..3600, got 'five'");
   EXPECT_EQ(refusal("broker = \"mqtt://b\"\nstatus_period_s = 0.1\n"),
             "fleet.toml:2:19: status_period_s: expected seconds in 0.2..3600, got 0.1");
-  EXPECT_EQ(refusal("broker = \"mqtt://b\"\nkeepalive_s = 7.5\n"), "fleet.toml:2:15: keepalive_s: expected whole seconds in 5..3600, got 7.5");
+  EXPECT_EQ(refusal("broker = \"mqtt://b\"\nkeepalive_s = 7.5\n"),
+            "fleet.toml:2:15: keepalive_s: expected whole seconds in 5..3600, got 7.5");
   EXPECT_EQ(refusal("broker = \"mqtt://b\"\nbroker_url = \"x\"\n"),
             "fleet.toml:2:1: broker_url: unknown key (expected one of broker, client_id, prefix, username, password_file, "
             "ca_file, insecure, status_file, control, status_period_s, keepalive_s, reconnect_max_s, discovery_prefix, name, "
@@ -95,15 +96,17 @@ TEST(FleetConfig, ErrorsNameTheLineTheKeyAndWhatWasExpected) {
 
 TEST(FleetConfig, TopicLevelsRefuseWildcardsAndTheFleetWideName) {
   for (const char* id : {"a/b", "a+", "#", "all", ""})
-    EXPECT_NE(refusal(std::string("broker = \"mqtt://b\"\nclient_id = \"") + id + "\"\n").find("client_id: expected a name without"),
-              std::string::npos)
+    EXPECT_NE(
+        refusal(std::string("broker = \"mqtt://b\"\nclient_id = \"") + id + "\"\n").find("client_id: expected a name without"),
+        std::string::npos)
         << id;
   for (const char* prefix : {"/x", "x/", "a//b", "a/+/b", "#", ""})
     EXPECT_NE(refusal(std::string("broker = \"mqtt://b\"\nprefix = \"") + prefix + "\"\n").find("prefix: expected topic levels"),
               std::string::npos)
         << prefix;
   EXPECT_EQ(parsed("broker = \"mqtt://b\"\nprefix = \"museum/hall-3\"\n").prefix, "museum/hall-3");
-  EXPECT_NE(refusal("broker = \"mqtt://b\"\ndiscovery_prefix = \"home/assistant\"\n").find("discovery_prefix: expected one topic level"),
+  EXPECT_NE(refusal("broker = \"mqtt://b\"\ndiscovery_prefix = \"home/assistant\"\n")
+                .find("discovery_prefix: expected one topic level"),
             std::string::npos);
 }
 
@@ -112,7 +115,8 @@ TEST(FleetConfig, TlsWithoutChecksMustBeWrittenOut) {
   EXPECT_FALSE(checked.insecure);
   EXPECT_TRUE(checked.ca_file.empty());  // the system's certificates
   EXPECT_TRUE(parsed("broker = \"mqtts://b\"\ninsecure = true\n").insecure);
-  EXPECT_EQ(refusal("broker = \"mqtts://b\"\ninsecure = \"yes\"\n"), "fleet.toml:2:12: insecure: expected true or false, got 'yes'");
+  EXPECT_EQ(refusal("broker = \"mqtts://b\"\ninsecure = \"yes\"\n"),
+            "fleet.toml:2:12: insecure: expected true or false, got 'yes'");
 }
 
 TEST(FleetTopics, APlayerTakesItsOwnCommandsAndTheFleetsAsControlMessages) {

@@ -16,6 +16,7 @@
 #include "hal/devices.h"
 #include "loader.h"
 #include "platform/platform.h"
+#include "play/bundle_follower.h"
 #include "play/event_sources.h"
 #include "play/frame_drawer.h"
 #include "play/gpu_recovery.h"
@@ -98,7 +99,8 @@ bool load_what_to_play(const PlayOptions& options, const playback::ParseOptions&
   std::vector<std::string> inputs = options.inputs;
   if (inputs.empty()) inputs.push_back("builtin:demo");
   if (inputs.size() == 1 && is_playlist(inputs.front())) {
-    playlist_path = fs::absolute(inputs.front()).lexically_normal().string();
+    // A bundle's current/playlist.toml plays from the version the link leads to (bundle_follower.h).
+    playlist_path = BundleFollower::resolve(fs::absolute(inputs.front()).lexically_normal().string());
     auto loaded = std::make_shared<playback::Playlist>();
     std::string error;
     if (!playback::load_playlist(playlist_path, parse_options, *loaded, error)) {

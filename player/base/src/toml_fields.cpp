@@ -29,8 +29,8 @@ std::string describe_toml(const toml::node& node) {
 
 void TomlFields::fail(const std::string& key, const std::string& expected) const {
   const toml::node* node = table_.get(key);
-  throw TomlError(position(source_, node != nullptr ? node->source() : table_.source()) + ": " + prefix_ + key +
-                  ": expected " + expected + ", got " + (node != nullptr ? describe_toml(*node) : "nothing"));
+  throw TomlError(position(source_, node != nullptr ? node->source() : table_.source()) + ": " + prefix_ + key + ": expected " +
+                  expected + ", got " + (node != nullptr ? describe_toml(*node) : "nothing"));
 }
 
 void TomlFields::only(std::initializer_list<std::string_view> keys) const {

@@ -1,13 +1,13 @@
 // The agent's loop: the broker's link polled, the status file carried to the state topic every
 // status period, commands carried to the control socket one at a time with their replies sent back.
 #include "base/read_file.h"
+#include "command_carrier.h"
 #include "control/control.h"
 #include "fleet/fleet.h"
-#include "command_carrier.h"
 #include "mqtt_link.h"
 
-#include <nlohmann/json.hpp>
 #include <sys/stat.h>
+#include <nlohmann/json.hpp>
 
 #include <csignal>
 #include <optional>
@@ -17,7 +17,9 @@ namespace fleet {
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
-void request_stop(int) { g_stop = 1; }
+void request_stop(int) {
+  g_stop = 1;
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -55,7 +57,8 @@ class Agent {
   bool start(std::string& error) { return link_.configure(error); }
 
   void run(double duration_s) {
-    const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
+    const Clock::time_point end =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
     Clock::time_point next_state{};
     while (g_stop == 0 && (duration_s <= 0.0 || Clock::now() < end)) {
       link_.poll(100);
@@ -67,7 +70,8 @@ class Agent {
       while (std::optional<CommandCarrier::Done> done = carrier_.take()) publish_done(*done);
       if (link_.connected() && Clock::now() >= next_state) {
         link_.publish({state_topic(config_), read_state(config_), true}, 0);
-        next_state = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.status_period_s));
+        next_state =
+            Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.status_period_s));
       }
     }
     link_.close({{availability_topic(config_), "offline", true}}, 2000);
@@ -76,7 +80,8 @@ class Agent {
 
   // `player fleet --remove`: the broker forgets this player (Home Assistant its device).
   bool remove(double timeout_s) {
-    const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
+    const Clock::time_point end =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s));
     while (!link_.connected() && Clock::now() < end && g_stop == 0) link_.poll(100);
     if (!link_.connected()) return false;
     std::vector<Message> empty = discovery_removal(config_);
@@ -102,10 +107,10 @@ class Agent {
   void publish_done(CommandCarrier::Done& done) {
     out_ << "fleet: " << done.topic << (done.payload.empty() ? "" : " '" + done.payload + "'") << ": " << done.reply << "\n";
     if (!done.jpeg.empty()) link_.publish({screenshot_topic(config_), std::move(done.jpeg), true}, 0);
-    link_.publish({reply_topic(config_),
-                   nlohmann::json{{"command", done.command}, {"ok", control::reply_ok(done.reply)}, {"reply", done.reply}}.dump(),
-                   false},
-                  1);
+    link_.publish(
+        {reply_topic(config_),
+         nlohmann::json{{"command", done.command}, {"ok", control::reply_ok(done.reply)}, {"reply", done.reply}}.dump(), false},
+        1);
     link_.publish({state_topic(config_), read_state(config_), true}, 0);
   }
 
@@ -137,9 +142,9 @@ int run_fleet(const Options& options, const std::string& version, std::ostream& 
     err << "error: " << error << "\n";
     return 2;
   }
-  out << (options.check ? "ok: " + options.config + ": " : std::string("fleet: ")) << config.client_id << " on " << (config.tls ? "mqtts://" : "mqtt://") << config.host << ":" << config.port
-      << ", topics " << config.prefix << "/" << config.client_id << "/..., status " << config.status_file << ", control "
-      << config.control << std::endl;
+  out << (options.check ? "ok: " + options.config + ": " : std::string("fleet: ")) << config.client_id << " on "
+      << (config.tls ? "mqtts://" : "mqtt://") << config.host << ":" << config.port << ", topics " << config.prefix << "/"
+      << config.client_id << "/..., status " << config.status_file << ", control " << config.control << std::endl;
   if (options.check) return 0;
   if (options.remove) {
     if (agent.remove(options.duration_s > 0.0 ? options.duration_s : 30.0)) return 0;

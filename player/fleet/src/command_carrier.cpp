@@ -22,8 +22,11 @@ void CommandCarrier::push(Message received) {
   {
     const std::lock_guard lock(mutex_);
     if (pending_.size() >= MqttLink::kMaxPending) {
-      done_.push_back({pending_.front().topic, pending_.front().payload, pending_.front().topic,
-                       "error: dropped unanswered: more than " + std::to_string(MqttLink::kMaxPending) + " commands waited", {}});
+      done_.push_back({pending_.front().topic,
+                       pending_.front().payload,
+                       pending_.front().topic,
+                       "error: dropped unanswered: more than " + std::to_string(MqttLink::kMaxPending) + " commands waited",
+                       {}});
       pending_.pop_front();
     }
     pending_.push_back(std::move(received));
@@ -62,7 +65,8 @@ CommandCarrier::Done CommandCarrier::carry(const Message& received) const {
     return done;
   }
   const bool screenshot = done.command == "screenshot";
-  if (!control::send_command(config_.control, done.command, screenshot ? kScreenshotTimeoutMs : kReplyTimeoutMs, done.reply, error)) {
+  if (!control::send_command(config_.control, done.command, screenshot ? kScreenshotTimeoutMs : kReplyTimeoutMs, done.reply,
+                             error)) {
     done.reply = "error: " + error;
     return done;
   }
@@ -71,8 +75,8 @@ CommandCarrier::Done CommandCarrier::carry(const Message& received) const {
   const std::size_t at = done.reply.find(marker);
   if (!screenshot || !control::reply_ok(done.reply) || at == std::string::npos) return done;
   int width = 0, height = 0;
-  if (!jpeg_within(done.reply.substr(at + marker.size()), static_cast<std::size_t>(config_.screenshot_max_kb) * base::kKiB, done.jpeg,
-                   width, height, error)) {
+  if (!jpeg_within(done.reply.substr(at + marker.size()), static_cast<std::size_t>(config_.screenshot_max_kb) * base::kKiB,
+                   done.jpeg, width, height, error)) {
     done.jpeg.clear();
     done.reply = "error: the screenshot cannot be sent: " + error;
   } else {

@@ -42,7 +42,8 @@ bool MqttLink::configure(std::string& error) {
   mosquitto_connect_callback_set(client_, &MqttLink::on_connect);
   mosquitto_message_callback_set(client_, &MqttLink::on_message);
   mosquitto_publish_callback_set(client_, [](mosquitto*, void* self, int) { ++static_cast<MqttLink*>(self)->acknowledged_; });
-  mosquitto_disconnect_callback_set(client_, [](mosquitto*, void* self, int) { static_cast<MqttLink*>(self)->socket_closed_ = true; });
+  mosquitto_disconnect_callback_set(client_,
+                                    [](mosquitto*, void* self, int) { static_cast<MqttLink*>(self)->socket_closed_ = true; });
   mosquitto_log_callback_set(client_, &MqttLink::on_log);
   if (!config_.username.empty()) {
     std::string password;
@@ -54,8 +55,8 @@ bool MqttLink::configure(std::string& error) {
       // A password file ends with a newline as editors write it; the password does not.
       while (!password.empty() && (password.back() == '\n' || password.back() == '\r')) password.pop_back();
     }
-    if (mosquitto_username_pw_set(client_, config_.username.c_str(), config_.password_file.empty() ? nullptr : password.c_str()) !=
-        MOSQ_ERR_SUCCESS) {
+    if (mosquitto_username_pw_set(client_, config_.username.c_str(),
+                                  config_.password_file.empty() ? nullptr : password.c_str()) != MOSQ_ERR_SUCCESS) {
       error = config_.source + ": username: libmosquitto refused it (not UTF-8?)";
       return false;
     }
@@ -63,7 +64,8 @@ bool MqttLink::configure(std::string& error) {
   if (config_.tls) {
     // Without a CA file, the system's certificates (ca-certificates) vouch for the broker.
     const char* ca_file = config_.ca_file.empty() ? nullptr : config_.ca_file.c_str();
-    const int rc = mosquitto_tls_set(client_, ca_file, ca_file == nullptr ? "/etc/ssl/certs" : nullptr, nullptr, nullptr, nullptr);
+    const int rc =
+        mosquitto_tls_set(client_, ca_file, ca_file == nullptr ? "/etc/ssl/certs" : nullptr, nullptr, nullptr, nullptr);
     if (rc != MOSQ_ERR_SUCCESS) {
       error = config_.source + ": ca_file: " + (config_.ca_file.empty() ? "/etc/ssl/certs" : config_.ca_file) +
               " cannot be used: " + mosquitto_strerror(rc);
@@ -94,7 +96,8 @@ void MqttLink::poll(int wait_ms) {
   }
   const int rc = mosquitto_loop(client_, wait_ms, 1);
   if (rc != MOSQ_ERR_SUCCESS)
-    lost((connected_ ? "" : "cannot connect: ") + (last_library_error_.empty() ? std::string(mosquitto_strerror(rc)) : last_library_error_),
+    lost((connected_ ? "" : "cannot connect: ") +
+             (last_library_error_.empty() ? std::string(mosquitto_strerror(rc)) : last_library_error_),
          Clock::now());
 }
 
@@ -171,9 +174,10 @@ void MqttLink::on_connect(mosquitto*, void* self, int rc) {
 void MqttLink::on_message(mosquitto*, void* self, const mosquitto_message* message) {
   auto& link = *static_cast<MqttLink*>(self);
   if (link.received_.size() >= kMaxPending) link.received_.pop_front();
-  link.received_.push_back({message->topic, std::string(static_cast<const char*>(message->payload),
-                                                        static_cast<std::size_t>(std::max(0, message->payloadlen))),
-                            message->retain});
+  link.received_.push_back(
+      {message->topic,
+       std::string(static_cast<const char*>(message->payload), static_cast<std::size_t>(std::max(0, message->payloadlen))),
+       message->retain});
 }
 
 void MqttLink::on_log(mosquitto*, void* self, int level, const char* text) {

@@ -69,8 +69,8 @@ bool jpeg_within(const std::string& png_path, std::size_t max_bytes, std::string
       return true;
     }
     if (width < 32 || height < 32) {
-      error = "a " + std::to_string(width) + "x" + std::to_string(height) + " JPEG still takes " + base::byte_size_text(jpeg.size()) +
-              ", over the " + base::byte_size_text(max_bytes) + " allowed";
+      error = "a " + std::to_string(width) + "x" + std::to_string(height) + " JPEG still takes " +
+              base::byte_size_text(jpeg.size()) + ", over the " + base::byte_size_text(max_bytes) + " allowed";
       break;
     }
     rgb = halved(rgb, width, height);

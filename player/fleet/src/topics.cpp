@@ -8,12 +8,15 @@
 namespace fleet {
 namespace {
 
-std::string base_topic(const Config& config) { return config.prefix + "/" + config.client_id; }
+std::string base_topic(const Config& config) {
+  return config.prefix + "/" + config.client_id;
+}
 
 // Home Assistant's node and object ids allow [a-zA-Z0-9_-] only.
 std::string discovery_id(std::string_view text) {
   std::string id(text);
-  std::replace_if(id.begin(), id.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_'; }, '_');
+  std::replace_if(
+      id.begin(), id.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_'; }, '_');
   return id;
 }
 
@@ -41,11 +44,15 @@ std::vector<Entity> entities(const Config& config) {
       sensor("frame_ms_p99", "Frame time p99", "{{ value_json.frame_ms_p99 | round(1) }}",
              {{"unit_of_measurement", "ms"}, {"state_class", "measurement"}}),
       sensor("errors", "Errors", "{{ value_json.errors | count }}", {{"state_class", "measurement"}}),
-      Entity{"binary_sensor", "display", "Display connected",
+      Entity{"binary_sensor",
+             "display",
+             "Display connected",
              {{"state_topic", state},
               {"device_class", "connectivity"},
               {"value_template", "{{ 'OFF' if value_json.state == 'no display' else 'ON' }}"}}},
-      Entity{"binary_sensor", "self_check", "Self-check passed",
+      Entity{"binary_sensor",
+             "self_check",
+             "Self-check passed",
              {{"state_topic", state},
               {"value_template", "{{ 'ON' if value_json.self_check and value_json.self_check.passed else 'OFF' }}"}}},
       button("next", "Next"),
@@ -65,10 +72,18 @@ std::string discovery_topic(const Config& config, const Entity& entity) {
 
 }  // namespace
 
-std::string state_topic(const Config& config) { return base_topic(config) + "/state"; }
-std::string availability_topic(const Config& config) { return base_topic(config) + "/availability"; }
-std::string reply_topic(const Config& config) { return base_topic(config) + "/reply"; }
-std::string screenshot_topic(const Config& config) { return base_topic(config) + "/screenshot/rendered"; }
+std::string state_topic(const Config& config) {
+  return base_topic(config) + "/state";
+}
+std::string availability_topic(const Config& config) {
+  return base_topic(config) + "/availability";
+}
+std::string reply_topic(const Config& config) {
+  return base_topic(config) + "/reply";
+}
+std::string screenshot_topic(const Config& config) {
+  return base_topic(config) + "/screenshot/rendered";
+}
 
 std::vector<std::string> command_subscriptions(const Config& config) {
   return {base_topic(config) + "/cmd/+", config.prefix + "/all/cmd/+"};

@@ -50,7 +50,10 @@ PlayLoop::PlayLoop(const PlayPieces& pieces, std::string playlist_path, std::sha
       playlist_(std::move(playlist)),
       schedule_(pieces.opening_hours),
       frame_(frames),
-      scene_shown_(frames > 0) {}
+      scene_shown_(frames > 0) {
+  if (!playlist_path_.empty() && !p_.options.inputs.empty())
+    bundle_.open(fs::absolute(p_.options.inputs.front()).lexically_normal().string());
+}
 
 void PlayLoop::update_status(bool force) {
   p_.status.announce_state();  // before the period: a state change reaches systemd at once
@@ -69,6 +72,7 @@ void PlayLoop::update_status(bool force) {
 void PlayLoop::watch_content() {
   std::set<std::string> folders;
   if (!playlist_path_.empty()) folders.insert(fs::path(playlist_path_).parent_path().string());
+  if (bundle_.active()) folders.insert(bundle_.folder());  // the swap of its `current`, and refused installs
   for (const playback::Item& item : playlist_->items) {
     if (item.scene.rfind("builtin:", 0) != 0) folders.insert(fs::path(item.scene).parent_path().string());
     if (!item.display.empty()) folders.insert(fs::path(item.display).parent_path().string());
@@ -92,7 +96,16 @@ void PlayLoop::drain_content() {
   changes_.clear();
   p_.watch.drain(changes_);
   for (const ContentWatch::Change& change : changes_) {
-    if (change.path != playlist_path_) {
+    if (const BundleFollower::Event event = bundle_.event_of(change.path); event == BundleFollower::Event::swapped) {
+      if (const std::string next = bundle_.swapped(); !next.empty()) {
+        p_.out << "content: " << change.path << " now leads to " << next << "; loading it to show at the next item\n"
+               << std::flush;
+        p_.loader.load_playlist(next);
+      }
+    } else if (event == BundleFollower::Event::record) {
+      if (const std::string refused = bundle_.refused_install(); !refused.empty())
+        p_.status.report(ErrorKind::content, refused + " (the installed version keeps playing)");
+    } else if (change.path != playlist_path_) {
       p_.scenes.reload(change.path);
     } else if (change.deleted) {
       p_.status.report(ErrorKind::content, change.path + ": the playlist was deleted (the last good one keeps playing)");
@@ -107,6 +120,13 @@ void PlayLoop::drain_loader() {
   while (p_.loader.take(result)) {
     if (result.kind == Loader::Result::Kind::scene) {
       p_.scenes.take(result, *timeline_);
+    } else if (bundle_.expects(result.path)) {
+      if (result.error.empty()) {
+        bundle_.hold(result.playlist, last_sequence_);
+      } else {
+        bundle_.drop();
+        p_.status.report(ErrorKind::content, result.error + " (the playing version stays)");
+      }
     } else if (!result.error.empty()) {
       p_.status.report(ErrorKind::content, result.error + " (the last good playlist keeps playing)");
     } else {
@@ -329,6 +349,14 @@ void PlayLoop::stay_closed(double now) {
 
 playback::Cue PlayLoop::cue_at(double now) {
   playback::Cue cue = timeline_->at(now, p_.clock.wall_start() + now);
+  // A new bundle version is shown from the first item that starts after it was loaded.
+  if (std::shared_ptr<const playback::Playlist> next = bundle_.take_at(cue.sequence)) {
+    p_.out << "content: playing " << bundle_.playing() << " from frame " << frame_ << "\n" << std::flush;
+    playlist_path_ = bundle_.playing();
+    apply_playlist(std::move(next), now);
+    cue = timeline_->at(now, p_.clock.wall_start() + now);
+  }
+  last_sequence_ = cue.sequence;
   load_for(cue);
   // A reproducible run waits for the item's scene instead of showing frames of "loading".
   while (p_.clock.manual() && cue.item >= 0 && !p_.scenes.settled(cue.item)) {

@@ -6,6 +6,7 @@
 #include "hal/devices.h"
 #include "loader.h"
 #include "platform/platform.h"
+#include "play/bundle_follower.h"
 #include "play/event_sources.h"
 #include "play/frame_drawer.h"
 #include "play/gpu_recovery.h"
@@ -106,8 +107,10 @@ class PlayLoop {
   std::vector<hal::Action> actions_;
   std::vector<int> control_fds_;
   OpeningSchedule schedule_;
-  bool closed_ = false;             // the display is off by the schedule or a command
-  bool screenshot_wanted_ = false;  // `player ctl screenshot`: the next frame drawn, written beside the socket
+  BundleFollower bundle_;            // a playlist in an installed content bundle: the next version at an item start
+  std::uint64_t last_sequence_ = 0;  // the Cue::sequence of the last frame's item
+  bool closed_ = false;              // the display is off by the schedule or a command
+  bool screenshot_wanted_ = false;   // `player ctl screenshot`: the next frame drawn, written beside the socket
   long long frame_;
   int last_item_ = -1;
   double display_found_s_ = -1.0;  // when a display came (back), until its first frame is shown

@@ -13,24 +13,24 @@ namespace fleet {
 inline constexpr std::string_view kDefaultConfig = "/etc/ssao-player/fleet.toml";
 
 struct Config {
-  std::string source;           // the file it was read from, for messages
-  bool tls = false;             // mqtts://
-  std::string host;             // the broker
-  int port = 1883;              // 1883, or 8883 with TLS, unless the URL names one
-  std::string client_id;        // default: the machine id
+  std::string source;     // the file it was read from, for messages
+  bool tls = false;       // mqtts://
+  std::string host;       // the broker
+  int port = 1883;        // 1883, or 8883 with TLS, unless the URL names one
+  std::string client_id;  // default: the machine id
   std::string prefix = "ssao-player";
-  std::string username;         // empty: none
-  std::string password_file;    // read at start; empty: none
-  std::string ca_file;          // empty with TLS: the system's certificates
-  bool insecure = false;        // TLS without checking the broker's certificate (written out, never a default)
+  std::string username;       // empty: none
+  std::string password_file;  // read at start; empty: none
+  std::string ca_file;        // empty with TLS: the system's certificates
+  bool insecure = false;      // TLS without checking the broker's certificate (written out, never a default)
   std::string status_file = "/run/ssao-player/status.json";
   std::string control = "/run/ssao-player/control";
   double status_period_s = 5.0;
   int keepalive_s = 30;
-  double reconnect_max_s = 60.0;      // the backoff's ceiling
+  double reconnect_max_s = 60.0;                   // the backoff's ceiling
   std::string discovery_prefix = "homeassistant";  // empty: no Home Assistant discovery
-  std::string name;                   // the device's name in Home Assistant (default: the client id)
-  int screenshot_max_kb = 256;        // a screenshot's JPEG is scaled down until it fits
+  std::string name;                                // the device's name in Home Assistant (default: the client id)
+  int screenshot_max_kb = 256;                     // a screenshot's JPEG is scaled down until it fits
 };
 
 // The file's text as a configuration. `machine_id` stands in for client_id when the file has none
@@ -55,8 +55,7 @@ std::string screenshot_topic(const Config& config);
 std::vector<std::string> command_subscriptions(const Config& config);
 // `topic` a command topic of this player (PREFIX/ID/cmd/VERB or PREFIX/all/cmd/VERB) and the
 // payload its arguments: the control socket's message ("item 2"). False and why otherwise.
-bool command_of(const Config& config, std::string_view topic, std::string_view payload, std::string& message,
-                std::string& error);
+bool command_of(const Config& config, std::string_view topic, std::string_view payload, std::string& message, std::string& error);
 
 // Home Assistant's MQTT discovery: one device per player with its sensors, binary sensors, buttons
 // and camera, each retained. `version`: the player's, for the device's sw_version.
@@ -66,8 +65,8 @@ std::vector<Message> discovery_removal(const Config& config);
 
 struct Options {
   std::string config = std::string(kDefaultConfig);
-  bool check = false;   // read the configuration, its password and CA files, say what it would do, and exit
-  bool remove = false;  // withdraw the player from the broker (discovery, state, availability) and exit
+  bool check = false;       // read the configuration, its password and CA files, say what it would do, and exit
+  bool remove = false;      // withdraw the player from the broker (discovery, state, availability) and exit
   double duration_s = 0.0;  // stop after this long (0: until SIGTERM or SIGINT), for tests and benchmarks
 };
 

@@ -72,10 +72,14 @@ fleet_config() {  # I CA [EXTRA]
   printf 'broker = "mqtts://127.0.0.1:%s"\nclient_id = "kiosk-%s"\nusername = "kiosk-%s"\npassword_file = "%s"\nca_file = "%s"\nstatus_file = "%s"\ncontrol = "%s"\nstatus_period_s = 1\nkeepalive_s = 5\nreconnect_max_s = 2\n%s' \
     "$port" "$1" "$1" "$dir/p$1/password" "$2" "$dir/p$1/status.json" "$dir/p$1/control" "${3:-}"
 }
+# Kiosk 1's board has a (mock) check camera, whose view comes with a screenshot.
+printf '[board]\nname = "fleet test"\n[camera]\ndevice = "mock"\n' >"$dir/camera-board.toml"
 for i in $(seq 1 $players); do
   mkdir -p "$dir/p$i"
+  board=()
+  [ "$i" = 1 ] && board=(--board "$dir/camera-board.toml")
   echo "secret-$i" >"$dir/p$i/password"
-  "$player" play builtin:demo --platform egl --size 64x48 --fps 2 --shader-cache "$dir/shaders" --hal mock \
+  "$player" play builtin:demo --platform egl --size 64x48 --fps 2 --shader-cache "$dir/shaders" --hal mock "${board[@]}" \
     --control "$dir/p$i/control" --status "$dir/p$i/status.json" >"$dir/p$i/play.log" 2>&1 &
   pids+=($!)
   fleet_config "$i" "$tls/fleet-ca.pem" >"$dir/p$i/fleet.toml"
@@ -136,12 +140,19 @@ wait $sub
 grep -q '"ok":false' "$dir/refused.txt" || fail "item many: $(cat "$dir/refused.txt")"
 echo "ok: a command to all reached all $players players; a bad one was refused"
 
-# A screenshot: the frame as a JPEG, retained.
+# A self-check, then a screenshot: the frame as a JPEG, retained, and (kiosk 1 has a camera) what
+# the camera saw.
+mosquitto_pub "${mqtt[@]}" -t ssao-player/kiosk-1/cmd/check -n
+wait_for "cmd/check: ok" 30 "$dir/p1/fleet.log" || fail "check: $(tail -3 "$dir/p1/fleet.log")"
+wait_for '"passed": *true' 60 "$dir/p1/status.json" || fail "kiosk 1's self-check did not pass: $(cat "$dir/p1/status.json")"
 mosquitto_pub "${mqtt[@]}" -t ssao-player/kiosk-1/cmd/screenshot -n
 wait_for "cmd/screenshot: ok: frame .* sent as a 64x48 JPEG" 20 "$dir/p1/fleet.log" || fail "screenshot: $(tail -3 "$dir/p1/fleet.log")"
 timeout 20 mosquitto_sub "${mqtt[@]}" -t ssao-player/kiosk-1/screenshot/rendered -C 1 -W 10 >"$dir/screenshot.jpg" 2>/dev/null
 [ "$(head -c 3 "$dir/screenshot.jpg" | od -An -tx1 | tr -d ' ')" = ffd8ff ] || fail "the screenshot topic holds no JPEG"
-echo "ok: a screenshot arrived as a JPEG ($(stat -c %s "$dir/screenshot.jpg") bytes)"
+grep -q "cmd/screenshot: ok: .*; camera frame sent as a [0-9]*x[0-9]* JPEG" "$dir/p1/fleet.log" || fail "no camera view: $(tail -3 "$dir/p1/fleet.log")"
+timeout 20 mosquitto_sub "${mqtt[@]}" -t ssao-player/kiosk-1/screenshot/camera -C 1 -W 10 >"$dir/camera.jpg" 2>/dev/null
+[ "$(head -c 3 "$dir/camera.jpg" | od -An -tx1 | tr -d ' ')" = ffd8ff ] || fail "the camera topic holds no JPEG"
+echo "ok: a screenshot arrived as a JPEG ($(stat -c %s "$dir/screenshot.jpg") bytes), with the check camera's view ($(stat -c %s "$dir/camera.jpg") bytes)"
 
 # The broker away and back (no persistence: it forgot every retained message): every agent
 # reconnects and publishes its retained state again.

@@ -16,7 +16,11 @@ bool parse_bytes(const std::string& text, std::uint64_t& bytes) {
   const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), number);
   if (status != std::errc() || end == text.data()) return false;
   const std::string_view unit(end, static_cast<std::size_t>(text.data() + text.size() - end));
-  const std::uint64_t scale = unit.empty() ? 1 : unit == "K" ? base::kKiB : unit == "M" ? base::kMiB : unit == "G" ? base::kGiB : 0;
+  const std::uint64_t scale = unit.empty()  ? 1
+                              : unit == "K" ? base::kKiB
+                              : unit == "M" ? base::kMiB
+                              : unit == "G" ? base::kGiB
+                                            : 0;
   if (scale == 0 || number == 0 || number > (std::uint64_t(1) << 50) / scale) return false;
   bytes = number * scale;
   return true;

@@ -12,18 +12,20 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <ctime>
 #include <ostream>
-#include <algorithm>
 #include <set>
 
 namespace content {
 namespace fs = std::filesystem;
 namespace {
 
-std::string counted(std::size_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); }
+std::string counted(std::size_t n, const char* what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
 
 bool tar_name(const std::string& path) {
   for (const char* end : {".tar", ".tar.gz", ".tgz", ".tar.xz", ".txz", ".tar.zst", ".tar.bz2"}) {
@@ -39,7 +41,8 @@ fs::path bundle_folder(const fs::path& unpacked) {
   std::error_code ec;
   std::vector<fs::path> entries;
   for (const fs::directory_entry& entry : fs::directory_iterator(unpacked, ec)) entries.push_back(entry.path());
-  if (entries.size() == 1 && fs::is_directory(entries.front()) && fs::exists(entries.front() / kPlaylistName)) return entries.front();
+  if (entries.size() == 1 && fs::is_directory(entries.front()) && fs::exists(entries.front() / kPlaylistName))
+    return entries.front();
   return unpacked;
 }
 
@@ -152,7 +155,8 @@ bool install(const InstallOptions& options, std::ostream& out, std::string& id, 
   const fs::path bundle = bundle_folder(incoming);
   if (!fs::exists(bundle / kPlaylistName))
     return refuse(options.source + ": no " + std::string(kPlaylistName) + " at the top of the bundle (nor in its one folder)");
-  out << "checking " << counted(unpacked.files, "file") << " (" << base::byte_size_text(unpacked.bytes) << ") with the player's loader\n";
+  out << "checking " << counted(unpacked.files, "file") << " (" << base::byte_size_text(unpacked.bytes)
+      << ") with the player's loader\n";
   std::string checked;
   if (!check_bundle(bundle.string(), out, checked, error)) {
     // The copy's path in messages is the source's, which the person installing knows.
@@ -160,7 +164,9 @@ bool install(const InstallOptions& options, std::ostream& out, std::string& id, 
     for (std::size_t at = why.find(bundle.string()); at != std::string::npos; at = why.find(bundle.string(), at))
       why.replace(at, bundle.string().size(), options.source);
     return refuse(why + " (the bundle was not installed; " +
-                  (store::current_id(root).empty() ? std::string("nothing plays from it yet") : "version " + store::current_id(root) + " stays") + ")");
+                  (store::current_id(root).empty() ? std::string("nothing plays from it yet")
+                                                   : "version " + store::current_id(root) + " stays") +
+                  ")");
   }
   out << "ok: " << checked << "\n";
 
@@ -223,7 +229,8 @@ bool waiting_bundles(const std::string& inbox, std::vector<std::string>& bundles
   std::vector<std::pair<fs::file_time_type, std::string>> found;
   for (const fs::directory_entry& entry : fs::directory_iterator(inbox, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.front() != '.' && entry.is_regular_file(ec) && tar_name(name)) found.emplace_back(entry.last_write_time(ec), entry.path().string());
+    if (name.front() != '.' && entry.is_regular_file(ec) && tar_name(name))
+      found.emplace_back(entry.last_write_time(ec), entry.path().string());
   }
   if (ec) {
     error = inbox + ": cannot read the inbox (" + ec.message() + ")";

@@ -16,8 +16,12 @@
 
 namespace content::store {
 
-fs::path versions_dir(const std::string& root) { return fs::path(root) / kVersionsName; }
-fs::path current_link(const std::string& root) { return fs::path(root) / kCurrentName; }
+fs::path versions_dir(const std::string& root) {
+  return fs::path(root) / kVersionsName;
+}
+fs::path current_link(const std::string& root) {
+  return fs::path(root) / kCurrentName;
+}
 
 std::string current_id(const std::string& root) {
   std::error_code ec;
@@ -87,7 +91,8 @@ void prune(const std::string& root, int keep, std::ostream& out) {
       if (entry.is_directory(ec)) fs::permissions(entry.path(), fs::perms::owner_write, fs::perm_options::add, ec);
     fs::permissions(folder, fs::perms::owner_write, fs::perm_options::add, ec);
     fs::remove_all(folder, ec);
-    out << (ec ? "warning: cannot remove the old version " + others[i] + " (" + ec.message() + ")" : "removed the old version " + others[i])
+    out << (ec ? "warning: cannot remove the old version " + others[i] + " (" + ec.message() + ")"
+               : "removed the old version " + others[i])
         << "\n";
   }
 }

@@ -94,7 +94,7 @@ bool unpack_tar(const std::string& source, const std::string& target, std::uint6
     const char* raw_name = archive_entry_pathname(entry);
     const fs::path name = fs::path(raw_name != nullptr ? raw_name : "").lexically_normal();
     const std::string shown = source + ": " + (raw_name != nullptr ? raw_name : "(no name)");
-    if (name.empty() || name.is_absolute() || *name.begin() == ".." ) {
+    if (name.empty() || name.is_absolute() || *name.begin() == "..") {
       error = shown + ": a path outside the bundle";
       return false;
     }
@@ -121,7 +121,8 @@ bool unpack_tar(const std::string& source, const std::string& target, std::uint6
           out.write(static_cast<const char*>(block), static_cast<std::streamsize>(size));
         }
         if (read != ARCHIVE_EOF || !out.flush()) {
-          error = shown + ": cannot unpack it (" + (read != ARCHIVE_EOF ? archive_error_string(reader.get()) : "write failed") + ")";
+          error =
+              shown + ": cannot unpack it (" + (read != ARCHIVE_EOF ? archive_error_string(reader.get()) : "write failed") + ")";
           return false;
         }
         ++unpacked.files;

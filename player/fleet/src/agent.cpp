@@ -85,7 +85,8 @@ class Agent {
     while (!link_.connected() && Clock::now() < end && g_stop == 0) link_.poll(100);
     if (!link_.connected()) return false;
     std::vector<Message> empty = discovery_removal(config_);
-    for (const std::string& topic : {state_topic(config_), availability_topic(config_), screenshot_topic(config_)})
+    for (const std::string& topic :
+         {state_topic(config_), availability_topic(config_), screenshot_topic(config_), camera_topic(config_)})
       empty.push_back({topic, "", true});
     link_.close(empty, 3000);
     out_ << "fleet: removed " << empty.size() << " retained topics of " << config_.client_id << "\n";
@@ -107,6 +108,7 @@ class Agent {
   void publish_done(CommandCarrier::Done& done) {
     out_ << "fleet: " << done.topic << (done.payload.empty() ? "" : " '" + done.payload + "'") << ": " << done.reply << "\n";
     if (!done.jpeg.empty()) link_.publish({screenshot_topic(config_), std::move(done.jpeg), true}, 0);
+    if (!done.camera_jpeg.empty()) link_.publish({camera_topic(config_), std::move(done.camera_jpeg), true}, 0);
     link_.publish(
         {reply_topic(config_),
          nlohmann::json{{"command", done.command}, {"ok", control::reply_ok(done.reply)}, {"reply", done.reply}}.dump(), false},

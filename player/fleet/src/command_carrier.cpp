@@ -26,6 +26,7 @@ void CommandCarrier::push(Message received) {
                        pending_.front().payload,
                        pending_.front().topic,
                        "error: dropped unanswered: more than " + std::to_string(MqttLink::kMaxPending) + " commands waited",
+                       {},
                        {}});
       pending_.pop_front();
     }
@@ -57,7 +58,7 @@ void CommandCarrier::work() {
 }
 
 CommandCarrier::Done CommandCarrier::carry(const Message& received) const {
-  Done done{received.topic, received.payload, received.topic, {}, {}};
+  Done done{received.topic, received.payload, received.topic, {}, {}, {}};
   std::string error;
   if (!command_of(config_, received.topic, received.payload, done.command, error)) {
     done.command = received.topic;
@@ -70,18 +71,24 @@ CommandCarrier::Done CommandCarrier::carry(const Message& received) const {
     done.reply = "error: " + error;
     return done;
   }
-  // "ok: frame N written to PATH": the frame as a JPEG for the screenshot topic.
-  constexpr std::string_view marker = " written to ";
-  const std::size_t at = done.reply.find(marker);
-  if (!screenshot || !control::reply_ok(done.reply) || at == std::string::npos) return done;
-  int width = 0, height = 0;
-  if (!jpeg_within(done.reply.substr(at + marker.size()), static_cast<std::size_t>(config_.screenshot_max_kb) * base::kKiB,
-                   done.jpeg, width, height, error)) {
-    done.jpeg.clear();
-    done.reply = "error: the screenshot cannot be sent: " + error;
-  } else {
-    done.reply += "; sent as a " + std::to_string(width) + "x" + std::to_string(height) + " JPEG";
-  }
+  if (!screenshot || !control::reply_ok(done.reply)) return done;
+  // "ok: frame N written to PATH[; camera frame written to PATH2]": each as a JPEG for its topic.
+  const std::size_t max_bytes = static_cast<std::size_t>(config_.screenshot_max_kb) * base::kKiB;
+  const auto encode = [&](std::string_view marker, std::string& jpeg, const char* what) {
+    const std::size_t at = done.reply.find(marker);
+    if (at == std::string::npos) return;
+    const std::size_t start = at + marker.size(), end = done.reply.find(';', start);
+    int width = 0, height = 0;
+    if (!jpeg_within(done.reply.substr(start, end == std::string::npos ? std::string::npos : end - start), max_bytes, jpeg, width,
+                     height, error)) {
+      jpeg.clear();
+      done.reply += std::string("; the ") + what + " cannot be sent: " + error;
+    } else {
+      done.reply += std::string("; ") + what + " sent as a " + std::to_string(width) + "x" + std::to_string(height) + " JPEG";
+    }
+  };
+  encode(" written to ", done.jpeg, "frame");
+  encode("; camera frame written to ", done.camera_jpeg, "camera frame");
   return done;
 }
 

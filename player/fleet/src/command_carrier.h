@@ -19,6 +19,7 @@ class CommandCarrier {
     std::string command;         // the control message sent, or the topic when it was not one
     std::string reply;           // the player's, or "error: why"
     std::string jpeg;            // after a screenshot: the frame, within screenshot_max_kb
+    std::string camera_jpeg;     // and what the check camera saw, where the board has one
   };
 
   explicit CommandCarrier(const Config& config);

@@ -62,6 +62,7 @@ std::vector<Entity> entities(const Config& config) {
       button("check", "Self-check"),
       button("reload", "Reload"),
       Entity{"camera", "screenshot", "Screenshot", {{"topic", screenshot_topic(config)}}},
+      Entity{"camera", "camera_view", "Check camera's view", {{"topic", camera_topic(config)}}},
   };
 }
 
@@ -83,6 +84,9 @@ std::string reply_topic(const Config& config) {
 }
 std::string screenshot_topic(const Config& config) {
   return base_topic(config) + "/screenshot/rendered";
+}
+std::string camera_topic(const Config& config) {
+  return base_topic(config) + "/screenshot/camera";
 }
 
 std::vector<std::string> command_subscriptions(const Config& config) {

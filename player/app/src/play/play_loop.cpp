@@ -435,7 +435,13 @@ std::optional<int> PlayLoop::show_frame(double now, double frame_interval, bool&
     const std::string path = (fs::path(p_.control.path()).parent_path() / "screenshot.png").string();
     const bool written = p_.drawer.write_surface(path, error);
     p_.status.note_action("screenshot");
-    p_.control.answer_later(written ? "ok: frame " + std::to_string(frame_) + " written to " + path : "error: " + error);
+    std::string reply = written ? "ok: frame " + std::to_string(frame_) + " written to " + path : "error: " + error;
+    // What the check camera sees of the screen too, where the board has one.
+    const std::string camera_path = (fs::path(path).parent_path() / "camera.png").string();
+    if (written && p_.check.has_camera())
+      reply +=
+          p_.check.write_camera_frame(camera_path, error) ? "; camera frame written to " + camera_path : "; camera: " + error;
+    p_.control.answer_later(reply);
     error.clear();
   }
   // The last frame as the GPU drew it onto the surface, before it goes to the display.

@@ -1,5 +1,7 @@
 #include "play/self_check_session.h"
 
+#include "base/image_codec.h"
+
 #include "gl/gl_api.h"
 #include "hal/mock.h"
 #include "play/kiosk_state.h"
@@ -87,6 +89,26 @@ bool SelfCheckSession::service_camera(double now) {
     return status_due;
   }
   return verdict(now) || status_due;
+}
+
+bool SelfCheckSession::write_camera_frame(const std::string& path, std::string& error) const {
+  if (camera_ == nullptr) {
+    error = "the board has no camera";
+    return false;
+  }
+  if (camera_lost_ || capture_.empty()) {
+    error = camera_lost_ ? "the camera is lost (" + camera_->last_error() + ")" : "the camera has delivered no frame yet";
+    return false;
+  }
+  base::images::WriteSpec spec;
+  spec.width = capture_.width;
+  spec.height = capture_.height;
+  spec.channels = 3;
+  if (base::images::write(path, spec, capture_.pixels.data(), error) != base::images::WriteFailure::none) {
+    error = path + ": " + error;
+    return false;
+  }
+  return true;
 }
 
 bool SelfCheckSession::verdict(double now) {

@@ -51,6 +51,9 @@ class SelfCheckSession {
   // The camera lost, for the status file's warnings.
   void append_warnings(std::vector<std::string>& out) const;
   const std::optional<hal::CheckSummary>& last_verdict() const { return last_; }
+  // The camera's latest frame (kept drained between checks) to an image file: what the screen looks
+  // like from the camera, beside a screenshot. False and why (no camera, lost, nothing captured yet).
+  bool write_camera_frame(const std::string& path, std::string& error) const;
 
  private:
   void start(double now, const render::PresentTarget& present, int width, int height);

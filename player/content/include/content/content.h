@@ -22,9 +22,9 @@ inline constexpr std::string_view kRecordName = "last-install.json";
 
 struct InstallOptions {
   std::string root = std::string(kDefaultRoot);
-  std::string source;                      // a folder, or a .tar (optionally .gz, .xz, .zst) of one
-  int keep = 3;                            // previous versions kept besides the current one
-  std::uint64_t max_bytes = 4ull << 30;    // the bundle's size budget, unpacked
+  std::string source;                    // a folder, or a .tar (optionally .gz, .xz, .zst) of one
+  int keep = 3;                          // previous versions kept besides the current one
+  std::uint64_t max_bytes = 4ull << 30;  // the bundle's size budget, unpacked
 };
 
 struct Version {

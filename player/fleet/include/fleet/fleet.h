@@ -50,7 +50,8 @@ struct Message {
 std::string state_topic(const Config& config);
 std::string availability_topic(const Config& config);
 std::string reply_topic(const Config& config);
-std::string screenshot_topic(const Config& config);
+std::string screenshot_topic(const Config& config);  // the presented frame
+std::string camera_topic(const Config& config);      // what the check camera sees of the screen
 // What a player subscribes to: its own commands and everyone's.
 std::vector<std::string> command_subscriptions(const Config& config);
 // `topic` a command topic of this player (PREFIX/ID/cmd/VERB or PREFIX/all/cmd/VERB) and the

@@ -82,6 +82,8 @@ for i in $(seq 1 $players); do
   "$player" play builtin:demo --platform egl --size 64x48 --fps 2 --shader-cache "$dir/shaders" --hal mock "${board[@]}" \
     --control "$dir/p$i/control" --status "$dir/p$i/status.json" >"$dir/p$i/play.log" 2>&1 &
   pids+=($!)
+  # The first compiles the shaders into the shared cache; the other seven load them from it.
+  [ "$i" = 1 ] && { wait_for "first frame presented" 120 "$dir/p1/play.log" || fail "player 1 did not start: $(cat "$dir/p1/play.log")"; }
   fleet_config "$i" "$tls/fleet-ca.pem" >"$dir/p$i/fleet.toml"
   "$player" fleet --config "$dir/p$i/fleet.toml" >"$dir/p$i/fleet.log" 2>&1 &
   pids+=($!)

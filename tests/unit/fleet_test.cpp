@@ -2,11 +2,17 @@
 // see), the topics a player answers on, and what Home Assistant's discovery is told. The agent
 // against a real broker is tests/cli/fleet.sh.
 #include "fleet/fleet.h"
+#include "screenshot.h"  // player/fleet/src: the agent's PNG-to-JPEG step
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <png.h>
+
 #include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <random>
 #include <set>
 
 namespace {
@@ -198,6 +204,38 @@ TEST(FleetDiscovery, RemovalEmptiesEveryTopicDiscoveryFilled) {
     EXPECT_TRUE(removed[i].retain);
   }
   EXPECT_TRUE(fleet::discovery_messages(parsed("broker = \"mqtt://b\"\ndiscovery_prefix = \"\"\n"), "1").empty());
+}
+
+TEST(FleetScreenshot, AFrameTooLargeForTheCapIsHalvedUntilItFits) {
+  // Noise: JPEG cannot make it small, so only fewer pixels can.
+  const int width = 320, height = 240;
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+  std::minstd_rand random(7);
+  for (std::uint8_t& v : rgb) v = static_cast<std::uint8_t>(random());
+  const std::string path = (std::filesystem::temp_directory_path() / "fleet-screenshot-test.png").string();
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = width;
+  image.height = height;
+  image.format = PNG_FORMAT_RGB;
+  ASSERT_NE(png_image_write_to_file(&image, path.c_str(), 0, rgb.data(), 0, nullptr), 0) << image.message;
+  std::string jpeg, error;
+  int w = 0, h = 0;
+  ASSERT_TRUE(fleet::jpeg_within(path, 1u << 20, jpeg, w, h, error)) << error;
+  EXPECT_EQ(w, width);  // under the cap: the whole frame
+  EXPECT_EQ(h, height);
+  ASSERT_GE(jpeg.size(), 3u);
+  EXPECT_EQ(static_cast<unsigned char>(jpeg[0]), 0xff);
+  EXPECT_EQ(static_cast<unsigned char>(jpeg[1]), 0xd8);
+  const std::size_t full = jpeg.size();
+  ASSERT_TRUE(fleet::jpeg_within(path, full / 3, jpeg, w, h, error)) << error;
+  EXPECT_LE(jpeg.size(), full / 3);
+  EXPECT_LT(w, width);
+  EXPECT_EQ(w * height, h * width);  // halved, the shape kept
+  EXPECT_FALSE(fleet::jpeg_within(path, 16, jpeg, w, h, error));
+  EXPECT_NE(error.find("over the 16 bytes allowed"), std::string::npos) << error;
+  EXPECT_FALSE(fleet::jpeg_within(path + ".missing", 1u << 20, jpeg, w, h, error));
+  std::filesystem::remove(path);
 }
 
 }  // namespace

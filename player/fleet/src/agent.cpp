@@ -61,7 +61,7 @@ class Agent {
         Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(duration_s));
     Clock::time_point next_state{};
     while (g_stop == 0 && (duration_s <= 0.0 || Clock::now() < end)) {
-      link_.poll(100);
+      link_.poll(100, carrier_.fd());
       if (link_.fresh()) announce(next_state);
       while (!link_.received().empty()) {
         carrier_.push(std::move(link_.received().front()));

@@ -5,16 +5,20 @@
 #include "mqtt_link.h"
 #include "screenshot.h"
 
+#include <sys/eventfd.h>
+#include <unistd.h>
+
 namespace fleet {
 
-CommandCarrier::CommandCarrier(const Config& config) : config_(config), worker_([this] { work(); }) {}
+CommandCarrier::CommandCarrier(const Config& config)
+    : config_(config), wake_(eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK)), worker_([this] { work(); }) {}
 
 CommandCarrier::~CommandCarrier() {
   {
     const std::lock_guard lock(mutex_);
     stop_ = true;
   }
-  wake_.notify_one();
+  work_to_do_.notify_one();
   worker_.join();
 }
 
@@ -29,14 +33,19 @@ void CommandCarrier::push(Message received) {
                        {},
                        {}});
       pending_.pop_front();
+      const std::uint64_t one = 1;
+      (void)!write(wake_.get(), &one, sizeof one);
     }
     pending_.push_back(std::move(received));
   }
-  wake_.notify_one();
+  work_to_do_.notify_one();
 }
 
 std::optional<CommandCarrier::Done> CommandCarrier::take() {
   const std::lock_guard lock(mutex_);
+  std::uint64_t count = 0;
+  while (read(wake_.get(), &count, sizeof count) > 0) {
+  }
   if (done_.empty()) return std::nullopt;
   Done done = std::move(done_.front());
   done_.pop_front();
@@ -46,7 +55,7 @@ std::optional<CommandCarrier::Done> CommandCarrier::take() {
 void CommandCarrier::work() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    wake_.wait(lock, [this] { return stop_ || !pending_.empty(); });
+    work_to_do_.wait(lock, [this] { return stop_ || !pending_.empty(); });
     if (stop_) return;
     const Message received = std::move(pending_.front());
     pending_.pop_front();
@@ -54,6 +63,8 @@ void CommandCarrier::work() {
     Done done = carry(received);
     lock.lock();
     done_.push_back(std::move(done));
+    const std::uint64_t one = 1;
+    (void)!write(wake_.get(), &one, sizeof one);
   }
 }
 

@@ -2,6 +2,7 @@
 // Commands from the broker carried to the player's control socket on a thread of their own, one at
 // a time: a player slow to answer (a screenshot waits for its next frame; a board under load) must
 // not keep the agent from the broker, whose keepalive would otherwise call it gone.
+#include "base/unique_fd.h"
 #include "fleet/fleet.h"
 
 #include <condition_variable>
@@ -30,6 +31,8 @@ class CommandCarrier {
   // At most MqttLink::kMaxPending wait; beyond that the oldest is dropped (and answered as such).
   void push(Message received);
   std::optional<Done> take();
+  // Readable while a Done waits (an eventfd): the agent's poll wakes for it.
+  int fd() const { return wake_.get(); }
 
   // How long the player may take: it answers in its next poll (a frame at most), a screenshot after
   // its next frame is drawn and read back.
@@ -41,7 +44,8 @@ class CommandCarrier {
 
   const Config& config_;
   std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable work_to_do_;
+  base::UniqueFd wake_;
   std::deque<Message> pending_;
   std::deque<Done> done_;
   bool stop_ = false;

@@ -4,11 +4,12 @@
 
 #include <mosquitto.h>
 
+#include <poll.h>
+
 #include <algorithm>
 #include <cmath>
 #include <ostream>
 #include <random>
-#include <thread>
 
 namespace fleet {
 namespace {
@@ -84,17 +85,22 @@ bool MqttLink::configure(std::string& error) {
   return true;
 }
 
-void MqttLink::poll(int wait_ms) {
+void MqttLink::poll(int wait_ms, int wake_fd) {
   const Clock::time_point now = Clock::now();
-  if (!socket_open_) {
-    if (now >= next_try_) try_connect(now);
-    if (!socket_open_) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(std::min<long long>(
-          wait_ms, std::max<long long>(1, std::chrono::duration_cast<std::chrono::milliseconds>(next_try_ - now).count()))));
-      return;
-    }
+  if (!socket_open_ && now >= next_try_) try_connect(now);
+  pollfd fds[2] = {{wake_fd, POLLIN, 0}, {-1, 0, 0}};
+  if (socket_open_) {
+    fds[1] = {mosquitto_socket(client_), static_cast<short>(POLLIN | (mosquitto_want_write(client_) ? POLLOUT : 0)), 0};
+  } else {
+    const auto until_try = std::chrono::duration_cast<std::chrono::milliseconds>(next_try_ - now).count();
+    wait_ms = static_cast<int>(std::clamp<long long>(until_try, 0, wait_ms));
   }
-  const int rc = mosquitto_loop(client_, wait_ms, 1);
+  // Woken by the broker's socket or the caller's own events (a command's reply), never later than
+  // wait_ms: the keepalive's pings are due on time.
+  ::poll(fds, socket_open_ ? 2 : 1, wait_ms);
+  if (!socket_open_) return;
+  // What is there (TLS records already decrypted included), what waits to be written, the keepalive.
+  const int rc = mosquitto_loop(client_, 0, 1);
   if (rc != MOSQ_ERR_SUCCESS)
     lost((connected_ ? "" : "cannot connect: ") +
              (last_library_error_.empty() ? std::string(mosquitto_strerror(rc)) : last_library_error_),

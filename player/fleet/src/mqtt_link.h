@@ -27,8 +27,9 @@ class MqttLink {
   // file libmosquitto refuses).
   bool configure(std::string& error);
   // Connects when it is time to (at once, then after each failure later, doubling up to
-  // reconnect_max_s), reads and writes what is due, and waits at most `wait_ms` for the socket.
-  void poll(int wait_ms);
+  // reconnect_max_s), reads and writes what is due, and waits at most `wait_ms` for the socket or
+  // `wake_fd` (-1: none) to be readable.
+  void poll(int wait_ms, int wake_fd = -1);
   // True between the broker's CONNACK and the connection's loss. `fresh()` is true once per
   // connection: the caller then announces itself (retained messages, subscriptions).
   bool connected() const { return connected_; }
